@@ -1,0 +1,131 @@
+// wideray render: renders scene files in a batch; a scene that fails is reported and skipped.
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+
+#include <fmt/core.h>
+#include <tbb/global_control.h>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "core/fp_mode.h"
+#include "core/mesh_framing.h"
+#include "core/renderer.h"
+#include "kernels/tracer_factory.h"
+
+namespace wideray::cli {
+namespace {
+
+struct RenderArgs {
+    std::vector<std::string> scenes;
+    std::string output;
+    std::string size;
+    int spp = 0;
+    std::string aov = "color";
+    EngineOptions engine;
+};
+
+Aov parseAov(const std::string& name) {
+    if (name == "normal") return Aov::Normal;
+    if (name == "depth") return Aov::Depth;
+    if (name == "cost") return Aov::Cost;
+    return Aov::Color;
+}
+
+TracerConfig makeTracerConfig(const EngineOptions& engine) {
+    TracerConfig config;
+    config.bvhWidth = engine.bvhWidth;
+    config.kernel = *parseKernel(engine.kernel);
+    if (engine.isa != "auto") config.isa = parseIsa(engine.isa);
+    return config;
+}
+
+std::filesystem::path outputPath(const RenderArgs& args, const std::filesystem::path& scene) {
+    std::string name = scene.stem().string() + (args.aov == "color" ? "" : "_" + args.aov) + ".png";
+    if (args.output.empty()) return std::filesystem::path("out") / name;
+    if (args.scenes.size() == 1 && !std::filesystem::is_directory(args.output)) return args.output;
+    return std::filesystem::path(args.output) / name;
+}
+
+/// 8-bit formats cannot hold depths, so those are scaled to [0, 1] by the largest depth.
+void normalizeDepth(Image& image, const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    if (ext == ".exr" || ext == ".hdr" || ext == ".pfm") return;
+    float maxDepth = 0.0f;
+    for (float d : image.pixels) maxDepth = std::max(maxDepth, d);
+    if (maxDepth > 0.0f)
+        for (float& d : image.pixels) d /= maxDepth;
+}
+
+void renderOne(const RenderArgs& args, const std::string& sceneFile) {
+    using Clock = std::chrono::steady_clock;
+    Scene scene = loadSceneOrMesh(sceneFile, 1024, 1024);
+    auto start = Clock::now();
+    TriangleMesh world = flattenTriangles(scene);
+    BuiltTracer built = buildWiderayTracer(scene, world, makeTracerConfig(args.engine));
+    double buildSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+
+    RenderOptions options;
+    if (!args.size.empty()) std::tie(options.width, options.height) = parseSize(args.size);
+    options.samplesPerPixel = args.spp;
+    options.aov = parseAov(args.aov);
+    options.progress = true;
+    options.label = sceneFile;
+    RenderStats stats;
+    Image image = render(scene, world, *built.tracer, options, stats);
+
+    std::filesystem::path out = outputPath(args, sceneFile);
+    if (options.aov == Aov::Depth) normalizeDepth(image, out);
+    writeImage(image, out, options.aov == Aov::Color);
+    fmt::print("{}: {}x{}, {} spp, {} triangles, BVH{} build {:.1f} ms, render {:.1f} ms, {} rays, "
+               "{:.2f} Mrays/s ({} {}) -> {}\n",
+               sceneFile, image.width, image.height,
+               args.spp > 0 ? args.spp : scene.image.samplesPerPixel, world.triangles.size(), args.engine.bvhWidth,
+               buildSeconds * 1e3, stats.seconds * 1e3, stats.primaryRays + stats.shadowRays,
+               stats.mraysPerSecond(), built.tracer->description(), isaName(built.isa), out.string());
+    if (options.aov == Aov::Cost) fmt::print("  cost heatmap: max {} nodes + primitives per pixel\n", stats.maxCost);
+    std::fflush(stdout);
+}
+
+} // namespace
+
+void addRenderCommand(CLI::App& app, int& exitCode) {
+    auto args = std::make_shared<RenderArgs>();
+    CLI::App* cmd = app.add_subcommand("render", "Render scene files (or bare meshes) to images");
+    cmd->add_option("scenes", args->scenes, "Scene files (.json, see docs/scene-format.md) or meshes (.obj, .ply, "
+                                            ".gltf, .glb, framed by the rule in docs/performance.md)")
+        ->required();
+    cmd->add_option("-o,--output", args->output,
+                    "Output image (format from its extension: png, exr, jpg, tif, ...); with several scenes, "
+                    "a folder. Default: out/SCENE.png (out/SCENE_AOV.png for other AOVs)");
+    cmd->add_option("--size", args->size, "Image size WxH, overriding the scene's");
+    cmd->add_option("--spp", args->spp, "Samples per pixel, overriding the scene's")->check(CLI::Range(1, 1 << 16));
+    cmd->add_option("--aov", args->aov,
+                    "What to write: color, normal (n * 0.5 + 0.5), depth (hit distance; scaled to [0,1] in "
+                    "8-bit formats) or cost (heatmap of BVH nodes + primitives visited per pixel)")
+        ->check(CLI::IsMember({"color", "normal", "depth", "cost"}))
+        ->capture_default_str();
+    addEngineOptions(*cmd, args->engine);
+    cmd->callback([args, &exitCode] {
+        FlushToZeroScope ftz;
+        std::optional<tbb::global_control> threads;
+        if (args->engine.threads > 0)
+            threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(args->engine.threads));
+        int failed = 0;
+        for (const std::string& scene : args->scenes) {
+            try {
+                renderOne(*args, scene);
+            } catch (const std::exception& e) {
+                ++failed;
+                fmt::print(stderr, "error: {}\n", e.what());
+            }
+        }
+        if (failed > 0) {
+            fmt::print(stderr, "{} of {} scenes failed\n", failed, args->scenes.size());
+            exitCode = 1;
+        }
+    });
+}
+
+} // namespace wideray::cli

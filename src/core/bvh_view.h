@@ -1,0 +1,41 @@
+#pragma once
+// Plain-pointer views of the acceleration structures: what the kernels receive, so that no standard
+// container crosses into translation units compiled for another ISA.
+#include <cstdint>
+
+#include "core/triangle_block.h"
+#include "core/wide_bvh.h"
+
+namespace wideray {
+
+class Geometry;
+
+template <int N>
+struct TriangleBvhView {
+    const WideNode<N>* nodes = nullptr;
+    NodeRef root;
+    const TriangleBlock<kBlockSize>* blocks = nullptr;
+};
+
+/// A user primitive: primitive primId of geometry geomId (geomId >= 1; 0 is the triangles).
+struct PrimRef {
+    uint32_t geomId;
+    uint32_t primId;
+};
+
+template <int N>
+struct UserBvhView {
+    const WideNode<N>* nodes = nullptr;
+    NodeRef root;
+    const PrimRef* prims = nullptr;
+    const Geometry* const* geometries = nullptr;  ///< indexed by geomId
+    bool empty() const { return nodes == nullptr && root.count() == 0; }
+};
+
+template <int N>
+struct SceneView {
+    TriangleBvhView<N> triangles;
+    UserBvhView<N> user;
+};
+
+} // namespace wideray

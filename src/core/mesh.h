@@ -1,0 +1,29 @@
+#pragma once
+// An indexed triangle mesh as loaded from a file, before it is placed in a scene.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace wideray {
+
+/// A material found in a mesh file (OBJ's MTL, glTF's PBR base color). The scene maps these by name.
+struct MeshMaterial {
+    std::string name;
+    glm::vec3 diffuse{0.8f};
+};
+
+struct TriangleMesh {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;      ///< per vertex; empty or the size of positions
+    std::vector<glm::vec2> uvs;          ///< per vertex; empty or the size of positions
+    std::vector<glm::uvec3> triangles;   ///< vertex indices, all checked < positions.size()
+    std::vector<uint32_t> faceMaterial;  ///< per triangle index into materials; empty = no materials
+    std::vector<MeshMaterial> materials;
+    size_t droppedDegenerate = 0;        ///< zero-area triangles removed while loading
+
+    size_t triangleCount() const { return triangles.size(); }
+};
+
+} // namespace wideray

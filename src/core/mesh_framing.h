@@ -1,0 +1,17 @@
+#pragma once
+// A bare mesh (OBJ, PLY, glTF) made into a scene by a documented rule, so that anyone can reproduce
+// benchmark numbers on it: c = center and R = half the diagonal of the mesh bounds;
+// eye = c + normalize(0.3, 0.25, 1.0) * 1.2 R; look at c; up (0, 1, 0); vertical field of view 50
+// degrees; a point light at c + (0.5 R, 2 R, 0.7 R); one grey diffuse material.
+#include <filesystem>
+
+#include "core/scene.h"
+
+namespace wideray {
+
+Scene sceneFromMesh(const std::filesystem::path& meshFile, int width, int height);
+
+/// A scene file (.json) as it is, or a bare mesh framed by the rule above.
+Scene loadSceneOrMesh(const std::filesystem::path& file, int meshWidth = 1024, int meshHeight = 1024);
+
+} // namespace wideray

@@ -1,0 +1,22 @@
+#pragma once
+// Loading triangle meshes from OBJ, PLY and glTF 2.0 files.
+#include <filesystem>
+
+#include "core/mesh.h"
+
+namespace wideray {
+
+/// Loads a mesh, choosing the format from the extension (.obj, .ply, .gltf, .glb). Polygons are
+/// fan-triangulated; zero-area triangles are dropped and counted in `droppedDegenerate`.
+/// Throws InputError naming the file, the line (or byte offset / glTF element) and what is wrong:
+/// a missing file, truncated data, an out-of-range index, NaN or Inf coordinates.
+TriangleMesh loadMesh(const std::filesystem::path& path);
+
+TriangleMesh loadObj(const std::filesystem::path& path);
+TriangleMesh loadPly(const std::filesystem::path& path);
+TriangleMesh loadGltf(const std::filesystem::path& path);
+
+/// Removes zero-area triangles (and counts them); checks indices and coordinates. Shared by every loader.
+void validateMesh(TriangleMesh& mesh, const std::string& file);
+
+} // namespace wideray

@@ -1,0 +1,22 @@
+#pragma once
+// Reading and writing scene files (JSON; the format is described in docs/scene-format.md).
+#include <filesystem>
+#include <string>
+
+#include "core/scene.h"
+
+namespace wideray {
+
+/// Reads and parses a scene file. Throws InputError for anything wrong with it or the meshes it uses.
+Scene loadScene(const std::filesystem::path& file);
+
+/// Parses scene JSON. `file` names the scene in error messages, and relative mesh paths are
+/// resolved against its folder. Throws InputError naming "line L, column C" for JSON syntax errors
+/// and the key path (such as "objects[2].transform.scale") for everything else.
+Scene parseScene(const std::string& jsonText, const std::filesystem::path& file);
+
+/// Writes a scene as JSON that parseScene reads back into an equal scene. Meshes are written inline
+/// (as "meshes" entries with their vertices and triangles), so the result needs no mesh files.
+std::string writeScene(const Scene& scene);
+
+} // namespace wideray

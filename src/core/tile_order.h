@@ -1,0 +1,28 @@
+#pragma once
+// Orders of work on the image: tiles along a Hilbert curve (neighbouring tiles run close in time, so
+// they share cached BVH nodes), pixels inside a tile in Morton (Z) order (so that consecutive groups
+// of 4, 8 and 16 rays are 2x2, 4x2 and 4x4 pixel blocks).
+#include <cstdint>
+#include <vector>
+
+namespace wideray {
+
+struct TileRect {
+    int x0, y0, x1, y1;  ///< pixels [x0, x1) x [y0, y1)
+};
+
+/// Index of cell (x, y) along the Hilbert curve over a 2^order x 2^order grid.
+uint64_t hilbertIndex(uint32_t x, uint32_t y, int order);
+
+/// Interleaves the bits of x and y (x in the even bits).
+uint32_t mortonEncode(uint32_t x, uint32_t y);
+void mortonDecode(uint32_t code, uint32_t& x, uint32_t& y);
+
+/// The image's tiles of tileSize x tileSize pixels, in Hilbert-curve order.
+std::vector<TileRect> hilbertTiles(int width, int height, int tileSize);
+
+/// Pixel offsets (x, y packed as y * tileSize + x) of a tileSize x tileSize tile in Morton order;
+/// tileSize is a power of two.
+std::vector<uint32_t> mortonPixelOrder(int tileSize);
+
+} // namespace wideray

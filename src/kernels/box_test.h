@@ -1,0 +1,70 @@
+#pragma once
+// Ray against the N child boxes of a wide node (the slab test, Kay and Kajiya 1986), with the
+// reciprocal direction precomputed once per ray and near/far planes chosen once from its signs.
+#include <cstdint>
+
+#include "core/wide_bvh.h"
+#include "simd/simd.h"
+
+namespace wideray {
+
+/// Far distances are scaled up by 1 + 2^-16, far more than the slab test's rounding error (Ize 2013,
+/// "Robust BVH Ray Traversal"), so that a box is never culled before a triangle inside it.
+constexpr float kRobustFarScale = 1.0f + 1.0f / 65536.0f;
+
+struct BoxRay {
+    float ox, oy, oz;
+    float rdx, rdy, rdz;
+    bool negX, negY, negZ;
+};
+
+inline BoxRay makeBoxRay(float ox, float oy, float oz, float dx, float dy, float dz) {
+    return {ox, oy, oz, 1.0f / dx, 1.0f / dy, 1.0f / dz, dx < 0.0f || std::signbit(dx),
+            dy < 0.0f || std::signbit(dy), dz < 0.0f || std::signbit(dz)};
+}
+
+/// Slab distances of one child. NaN slabs (0 * inf) drop out: min/max return their second operand.
+template <class F>
+inline void slabInterval(const F& nearX, const F& farX, const F& nearY, const F& farY, const F& nearZ,
+                         const F& farZ, const BoxRay& r, const F& tnear, const F& tfar, F& tEntry, F& tExit) {
+    using simd::max;
+    using simd::min;
+    F tx0 = (nearX - F(r.ox)) * F(r.rdx), tx1 = (farX - F(r.ox)) * F(r.rdx);
+    F ty0 = (nearY - F(r.oy)) * F(r.rdy), ty1 = (farY - F(r.oy)) * F(r.rdy);
+    F tz0 = (nearZ - F(r.oz)) * F(r.rdz), tz1 = (farZ - F(r.oz)) * F(r.rdz);
+    tEntry = max(tx0, max(ty0, max(tz0, tnear)));
+    tExit = min(tx1, min(ty1, min(tz1, tfar))) * F(kRobustFarScale);
+}
+
+/// Tests all N children; returns the bit mask of those hit and writes their entry distances.
+/// W = 1 loops over the children with scalar floats (the reference); W = N does one SIMD test.
+template <int N, int W>
+inline uint32_t intersectChildren(const WideNode<N>& node, const BoxRay& r, float tnear, float tfar,
+                                  float* tEntryOut) {
+    const float* nx = r.negX ? node.upperX : node.lowerX;
+    const float* fx = r.negX ? node.lowerX : node.upperX;
+    const float* ny = r.negY ? node.upperY : node.lowerY;
+    const float* fy = r.negY ? node.lowerY : node.upperY;
+    const float* nz = r.negZ ? node.upperZ : node.lowerZ;
+    const float* fz = r.negZ ? node.lowerZ : node.upperZ;
+    if constexpr (W == 1) {
+        uint32_t mask = 0;
+        for (int i = 0; i < N; ++i) {
+            float tEntry, tExit;
+            slabInterval(nx[i], fx[i], ny[i], fy[i], nz[i], fz[i], r, tnear, tfar, tEntry, tExit);
+            tEntryOut[i] = tEntry;
+            mask |= uint32_t(tEntry <= tExit) << i;
+        }
+        return mask;
+    } else {
+        static_assert(W == N);
+        using F = simd::vfloat<N>;
+        F tEntry, tExit;
+        slabInterval(F::load(nx), F::load(fx), F::load(ny), F::load(fy), F::load(nz), F::load(fz), r, F(tnear),
+                     F(tfar), tEntry, tExit);
+        tEntry.store(tEntryOut);
+        return simd::movemask(tEntry <= tExit);
+    }
+}
+
+} // namespace wideray

@@ -1,0 +1,40 @@
+#pragma once
+// Builds our tracer for a scene: the wide BVH (N = 4 or 8) and the kernels chosen for this CPU.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+#include "core/scene_accel.h"
+#include "core/tracer.h"
+#include "simd/cpu_features.h"
+
+namespace wideray {
+
+enum class KernelChoice { Scalar, Packet4, Packet8, Packet16, Stream, Auto };
+
+const char* kernelName(KernelChoice k);
+std::optional<KernelChoice> parseKernel(std::string_view name);
+
+struct TracerConfig {
+    int bvhWidth = 8;
+    KernelChoice kernel = KernelChoice::Auto;
+    std::optional<Isa> isa;  ///< nullopt: the best this CPU has
+};
+
+struct BuiltTracer {
+    std::unique_ptr<Tracer> tracer;
+    BuildTimings timings;
+    size_t bytes = 0;
+    Isa isa = Isa::Sse42;
+};
+
+/// The scene's user geometry, indexed by geomId (entry 0, the triangles, is null).
+std::vector<std::unique_ptr<Geometry>> userGeometries(const Scene& scene);
+
+/// Throws InputError when the configuration asks for an ISA this CPU lacks or a kernel that the
+/// chosen ISA cannot run.
+BuiltTracer buildWiderayTracer(const Scene& scene, const TriangleMesh& world, const TracerConfig& config);
+
+} // namespace wideray

@@ -1,0 +1,155 @@
+#pragma once
+// Single-ray traversal of the wide BVH: children visited nearest first, subtrees beyond the closest
+// hit culled, any-hit mode stopping at the first occluder. NodeW = 1 and TriW = 1 give the scalar
+// reference; NodeW = N and TriW = kBlockSize give the same answers with SIMD box and triangle tests.
+#include <cstdint>
+
+#include "core/bvh_view.h"
+#include "core/geometry.h"
+#include "kernels/box_test.h"
+#include "kernels/hit_order.h"
+#include "kernels/watertight.h"
+
+namespace wideray {
+
+template <int N>
+constexpr int kStackSize = kMaxBvhDepth * (N - 1) + 1;
+
+struct SingleRayState {
+    BoxRay box;
+    WatertightRay<float, int32_t> woop;
+};
+
+inline SingleRayState makeSingleRayState(const Ray& ray) {
+    return {makeBoxRay(ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz),
+            makeWatertightRay<float, int32_t>(ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz)};
+}
+
+/// Tests one triangle block; closest-hit updates `hit` (and returns false), any-hit returns true
+/// at the first hit.
+template <int TriW, bool AnyHit>
+inline bool intersectBlock(const TriangleBlock<kBlockSize>& block, const SingleRayState& s, const Ray& ray,
+                           Hit& hit) {
+    if constexpr (TriW == 1) {
+        for (int i = 0; i < kBlockSize && block.primId[i] != kInvalidId; ++i) {
+            float t = 0, u = 0, v = 0;
+            bool h = intersectWatertight(s.woop, true, block.v0x[i], block.v0y[i], block.v0z[i], block.v1x[i],
+                                         block.v1y[i], block.v1z[i], block.v2x[i], block.v2y[i], block.v2z[i],
+                                         ray.tnear, hit.t, t, u, v);
+            if (!h) continue;
+            if constexpr (AnyHit) return true;
+            if (isCloser(t, 0, block.primId[i], hit)) hit = {t, u, v, block.primId[i], 0};
+        }
+        return false;
+    } else {
+        static_assert(TriW == kBlockSize);
+        using F = vfloat<TriW>;
+        using I = vint<TriW>;
+        WatertightRay<F, I> r{F(s.woop.ox), F(s.woop.oy), F(s.woop.oz), I(s.woop.kx), I(s.woop.ky),
+                              I(s.woop.kz), F(s.woop.sx), F(s.woop.sy), F(s.woop.sz)};
+        auto valid = I::loadu(block.primId) != I(int32_t(kInvalidId));
+        F t(0.0f), u(0.0f), v(0.0f);
+        auto h = intersectWatertight(r, valid, F::load(block.v0x), F::load(block.v0y), F::load(block.v0z),
+                                     F::load(block.v1x), F::load(block.v1y), F::load(block.v1z),
+                                     F::load(block.v2x), F::load(block.v2y), F::load(block.v2z), F(ray.tnear),
+                                     F(hit.t), t, u, v);
+        uint32_t lanes = movemask(h);
+        if (!lanes) return false;
+        if constexpr (AnyHit) return true;
+        alignas(64) float ts[TriW], us[TriW], vs[TriW];
+        t.store(ts); u.store(us); v.store(vs);
+        for (; lanes; lanes &= lanes - 1) {
+            int i = __builtin_ctz(lanes);
+            if (isCloser(ts[i], 0, block.primId[i], hit)) hit = {ts[i], us[i], vs[i], block.primId[i], 0};
+        }
+        return false;
+    }
+}
+
+/// Visits the leaves a ray reaches, nearest subtree first. `leaf(first, count)` returns true to stop
+/// (any-hit); `tfar()` is the current culling distance.
+template <int N, int NodeW, class LeafFn, class TfarFn>
+inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, TfarFn tfar,
+                         LeafFn leaf, TraversalCost& cost) {
+    struct Entry {
+        NodeRef ref;
+        float tEntry;
+    };
+    Entry stack[kStackSize<N>];
+    int sp = 0;
+    stack[sp++] = {root, tnear};
+    while (sp > 0) {
+        Entry e = stack[--sp];
+        if (e.tEntry > tfar() * kRobustFarScale) continue;
+        NodeRef ref = e.ref;
+        while (!ref.isLeaf()) {
+            ++cost.nodes;
+            const WideNode<N>& node = nodes[ref.index()];
+            alignas(64) float tEntry[N];
+            uint32_t mask = intersectChildren<N, NodeW>(node, box, tnear, tfar(), tEntry);
+            if (mask == 0) goto pop;
+            if ((mask & (mask - 1)) == 0) {
+                ref = node.child[__builtin_ctz(mask)];
+                continue;
+            }
+            // Push the hit children farthest first, then continue with the nearest.
+            Entry hitChildren[N];
+            int n = 0;
+            for (; mask; mask &= mask - 1) {
+                int i = __builtin_ctz(mask);
+                Entry c{node.child[i], tEntry[i]};
+                int j = n++;
+                for (; j > 0 && hitChildren[j - 1].tEntry < c.tEntry; --j) hitChildren[j] = hitChildren[j - 1];
+                hitChildren[j] = c;
+            }
+            for (int i = 0; i < n - 1; ++i) stack[sp++] = hitChildren[i];
+            ref = hitChildren[n - 1].ref;
+        }
+        if (leaf(ref.first(), ref.count())) return;
+    pop:;
+    }
+}
+
+/// Closest hit (AnyHit = false) or occlusion (AnyHit = true, returns whether occluded) of one ray
+/// against the scene's triangles and user geometry. `hit` must start as a miss at ray.tfar.
+template <int N, int NodeW, int TriW, bool AnyHit>
+inline bool traceSingle(const SceneView<N>& scene, const Ray& ray, Hit& hit, TraversalCost& cost) {
+    if (!isValidRay(ray)) return false;
+    SingleRayState s = makeSingleRayState(ray);
+    bool occluded = false;
+    auto tfar = [&] { return hit.t; };
+    const TriangleBvhView<N>& tri = scene.triangles;
+    if (tri.blocks) {
+        traverseWide<N, NodeW>(
+            tri.nodes, tri.root, s.box, ray.tnear, tfar,
+            [&](uint32_t first, uint32_t count) {
+                for (uint32_t b = first; b < first + count; ++b) {
+                    cost.primitives += kBlockSize;
+                    if (intersectBlock<TriW, AnyHit>(tri.blocks[b], s, ray, hit)) return occluded = true;
+                }
+                return false;
+            },
+            cost);
+        if (occluded) return true;
+    }
+    const UserBvhView<N>& user = scene.user;
+    if (user.prims) {
+        traverseWide<N, NodeW>(
+            user.nodes, user.root, s.box, ray.tnear, tfar,
+            [&](uint32_t first, uint32_t count) {
+                for (uint32_t i = first; i < first + count; ++i) {
+                    ++cost.primitives;
+                    PrimRef p = user.prims[i];
+                    float t, u, v;
+                    if (!user.geometries[p.geomId]->intersect(ray, p.primId, hit.t, t, u, v)) continue;
+                    if (AnyHit) return occluded = true;
+                    if (isCloser(t, p.geomId, p.primId, hit)) hit = {t, u, v, p.primId, p.geomId};
+                }
+                return false;
+            },
+            cost);
+    }
+    return occluded;
+}
+
+} // namespace wideray

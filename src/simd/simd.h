@@ -1,0 +1,56 @@
+#pragma once
+// Width-generic SIMD vocabulary: vfloat<W>, vint<W>, vbool<W>. W = 1 maps to float, int32_t and
+// bool, so one kernel template compiles as scalar code and as 4/8/16-wide SIMD. The wide types exist
+// only in translation units compiled for an ISA that has them.
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include "simd/vfloat4.h"
+#if defined(__AVX2__)
+#include "simd/vfloat8.h"
+#endif
+#if defined(__AVX512F__)
+#include "simd/vfloat16.h"
+#endif
+
+namespace wideray::simd {
+
+// Scalar operations with the exact semantics of the vector ones (NaN picks the second operand).
+inline float min(float a, float b) { return a < b ? a : b; }
+inline float max(float a, float b) { return a > b ? a : b; }
+inline float abs(float a) { return std::fabs(a); }
+inline float select(bool m, float a, float b) { return m ? a : b; }
+inline int32_t select(bool m, int32_t a, int32_t b) { return m ? a : b; }
+inline float bitXor(float a, float b) {
+    uint32_t x, y;
+    std::memcpy(&x, &a, 4);
+    std::memcpy(&y, &b, 4);
+    x ^= y;
+    float r;
+    std::memcpy(&r, &x, 4);
+    return r;
+}
+inline float signBit(float a) { return std::signbit(a) ? -0.0f : 0.0f; }
+inline bool isFinite(float a) { return abs(a) < __builtin_huge_valf(); }
+inline bool any(bool b) { return b; }
+inline bool all(bool b) { return b; }
+inline bool none(bool b) { return !b; }
+inline bool andNot(bool a, bool b) { return a && !b; }
+inline uint32_t movemask(bool b) { return b ? 1u : 0u; }
+
+template <int W> struct Types;
+template <> struct Types<1> { using Float = float; using Int = int32_t; using Bool = bool; };
+template <> struct Types<4> { using Float = vfloat4; using Int = vint4; using Bool = vbool4; };
+#if defined(__AVX2__)
+template <> struct Types<8> { using Float = vfloat8; using Int = vint8; using Bool = vbool8; };
+#endif
+#if defined(__AVX512F__)
+template <> struct Types<16> { using Float = vfloat16; using Int = vint16; using Bool = vbool16; };
+#endif
+
+template <int W> using vfloat = typename Types<W>::Float;
+template <int W> using vint = typename Types<W>::Int;
+template <int W> using vbool = typename Types<W>::Bool;
+
+} // namespace wideray::simd

@@ -1,0 +1,78 @@
+#pragma once
+// 16-wide AVX-512 (F/VL/BW/DQ) vectors: vfloat16, vint16, vbool16 (a k-mask).
+#include <immintrin.h>
+
+#include <cstdint>
+
+namespace wideray::simd {
+
+struct vbool16 {
+    __mmask16 m;
+    vbool16() = default;
+    vbool16(__mmask16 v) : m(v) {}
+    explicit vbool16(bool b) : m(b ? 0xFFFF : 0) {}
+    friend vbool16 operator&(vbool16 a, vbool16 b) { return __mmask16(a.m & b.m); }
+    friend vbool16 operator|(vbool16 a, vbool16 b) { return __mmask16(a.m | b.m); }
+    friend vbool16 operator^(vbool16 a, vbool16 b) { return __mmask16(a.m ^ b.m); }
+    friend vbool16 andNot(vbool16 a, vbool16 b) { return __mmask16(a.m & ~b.m); }
+    vbool16& operator&=(vbool16 b) { return *this = *this & b; }
+    vbool16& operator|=(vbool16 b) { return *this = *this | b; }
+};
+inline uint32_t movemask(vbool16 b) { return b.m; }
+inline bool any(vbool16 b) { return b.m != 0; }
+inline bool all(vbool16 b) { return b.m == 0xFFFF; }
+inline bool none(vbool16 b) { return b.m == 0; }
+inline vbool16 maskFromBits16(uint32_t bits) { return __mmask16(bits); }
+
+struct vint16 {
+    __m512i m;
+    vint16() = default;
+    vint16(__m512i v) : m(v) {}
+    vint16(int32_t s) : m(_mm512_set1_epi32(s)) {}
+    static vint16 load(const int32_t* p) { return _mm512_load_si512(p); }
+    static vint16 loadu(const void* p) { return _mm512_loadu_si512(p); }
+    void store(int32_t* p) const { _mm512_store_si512(p, m); }
+    friend vint16 operator+(vint16 a, vint16 b) { return _mm512_add_epi32(a.m, b.m); }
+    friend vint16 operator&(vint16 a, vint16 b) { return _mm512_and_si512(a.m, b.m); }
+    friend vbool16 operator==(vint16 a, vint16 b) { return _mm512_cmpeq_epi32_mask(a.m, b.m); }
+    friend vbool16 operator!=(vint16 a, vint16 b) { return _mm512_cmpneq_epi32_mask(a.m, b.m); }
+    friend vbool16 operator<(vint16 a, vint16 b) { return _mm512_cmplt_epi32_mask(a.m, b.m); }
+};
+inline vint16 select(vbool16 m, vint16 a, vint16 b) { return _mm512_mask_blend_epi32(m.m, b.m, a.m); }
+
+struct vfloat16 {
+    __m512 m;
+    static constexpr int size = 16;
+    vfloat16() = default;
+    vfloat16(__m512 v) : m(v) {}
+    vfloat16(float s) : m(_mm512_set1_ps(s)) {}
+    static vfloat16 load(const float* p) { return _mm512_load_ps(p); }
+    static vfloat16 loadu(const float* p) { return _mm512_loadu_ps(p); }
+    void store(float* p) const { _mm512_store_ps(p, m); }
+    friend vfloat16 operator+(vfloat16 a, vfloat16 b) { return _mm512_add_ps(a.m, b.m); }
+    friend vfloat16 operator-(vfloat16 a, vfloat16 b) { return _mm512_sub_ps(a.m, b.m); }
+    friend vfloat16 operator*(vfloat16 a, vfloat16 b) { return _mm512_mul_ps(a.m, b.m); }
+    friend vfloat16 operator/(vfloat16 a, vfloat16 b) { return _mm512_div_ps(a.m, b.m); }
+    friend vfloat16 operator-(vfloat16 a) {
+        return _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a.m), _mm512_set1_epi32(INT32_MIN)));
+    }
+    friend vbool16 operator<(vfloat16 a, vfloat16 b) { return _mm512_cmp_ps_mask(a.m, b.m, _CMP_LT_OQ); }
+    friend vbool16 operator<=(vfloat16 a, vfloat16 b) { return _mm512_cmp_ps_mask(a.m, b.m, _CMP_LE_OQ); }
+    friend vbool16 operator>(vfloat16 a, vfloat16 b) { return _mm512_cmp_ps_mask(a.m, b.m, _CMP_GT_OQ); }
+    friend vbool16 operator>=(vfloat16 a, vfloat16 b) { return _mm512_cmp_ps_mask(a.m, b.m, _CMP_GE_OQ); }
+    friend vbool16 operator==(vfloat16 a, vfloat16 b) { return _mm512_cmp_ps_mask(a.m, b.m, _CMP_EQ_OQ); }
+};
+/// AVX-512 min/max, like SSE's, return the second operand when either is NaN.
+inline vfloat16 min(vfloat16 a, vfloat16 b) { return _mm512_min_ps(a.m, b.m); }
+inline vfloat16 max(vfloat16 a, vfloat16 b) { return _mm512_max_ps(a.m, b.m); }
+inline vfloat16 abs(vfloat16 a) { return _mm512_abs_ps(a.m); }
+inline vfloat16 signBit(vfloat16 a) {
+    return _mm512_castsi512_ps(_mm512_and_si512(_mm512_castps_si512(a.m), _mm512_set1_epi32(INT32_MIN)));
+}
+inline vfloat16 bitXor(vfloat16 a, vfloat16 b) {
+    return _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a.m), _mm512_castps_si512(b.m)));
+}
+inline vfloat16 select(vbool16 m, vfloat16 a, vfloat16 b) { return _mm512_mask_blend_ps(m.m, b.m, a.m); }
+inline vbool16 isFinite(vfloat16 a) { return abs(a) < vfloat16(__builtin_huge_valf()); }
+
+} // namespace wideray::simd

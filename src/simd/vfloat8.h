@@ -1,0 +1,77 @@
+#pragma once
+// 8-wide AVX2 vectors: vfloat8, vint8, vbool8.
+#include <immintrin.h>
+
+#include <cstdint>
+
+namespace wideray::simd {
+
+struct vbool8 {
+    __m256 m;
+    vbool8() = default;
+    vbool8(__m256 v) : m(v) {}
+    explicit vbool8(bool b) : m(_mm256_castsi256_ps(_mm256_set1_epi32(b ? -1 : 0))) {}
+    friend vbool8 operator&(vbool8 a, vbool8 b) { return _mm256_and_ps(a.m, b.m); }
+    friend vbool8 operator|(vbool8 a, vbool8 b) { return _mm256_or_ps(a.m, b.m); }
+    friend vbool8 operator^(vbool8 a, vbool8 b) { return _mm256_xor_ps(a.m, b.m); }
+    friend vbool8 andNot(vbool8 a, vbool8 b) { return _mm256_andnot_ps(b.m, a.m); }
+    vbool8& operator&=(vbool8 b) { return *this = *this & b; }
+    vbool8& operator|=(vbool8 b) { return *this = *this | b; }
+};
+inline uint32_t movemask(vbool8 b) { return uint32_t(_mm256_movemask_ps(b.m)); }
+inline bool any(vbool8 b) { return movemask(b) != 0; }
+inline bool all(vbool8 b) { return movemask(b) == 0xFF; }
+inline bool none(vbool8 b) { return movemask(b) == 0; }
+inline vbool8 maskFromBits8(uint32_t bits) {
+    __m256i lane = _mm256_set_epi32(128, 64, 32, 16, 8, 4, 2, 1);
+    __m256i m = _mm256_and_si256(_mm256_set1_epi32(int(bits)), lane);
+    return _mm256_castsi256_ps(_mm256_cmpeq_epi32(m, lane));
+}
+
+struct vint8 {
+    __m256i m;
+    vint8() = default;
+    vint8(__m256i v) : m(v) {}
+    vint8(int32_t s) : m(_mm256_set1_epi32(s)) {}
+    static vint8 load(const int32_t* p) { return _mm256_load_si256(reinterpret_cast<const __m256i*>(p)); }
+    static vint8 loadu(const void* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
+    void store(int32_t* p) const { _mm256_store_si256(reinterpret_cast<__m256i*>(p), m); }
+    friend vint8 operator+(vint8 a, vint8 b) { return _mm256_add_epi32(a.m, b.m); }
+    friend vint8 operator&(vint8 a, vint8 b) { return _mm256_and_si256(a.m, b.m); }
+    friend vbool8 operator==(vint8 a, vint8 b) { return _mm256_castsi256_ps(_mm256_cmpeq_epi32(a.m, b.m)); }
+    friend vbool8 operator!=(vint8 a, vint8 b) { return andNot(vbool8(true), a == b); }
+    friend vbool8 operator<(vint8 a, vint8 b) { return _mm256_castsi256_ps(_mm256_cmpgt_epi32(b.m, a.m)); }
+};
+inline vint8 select(vbool8 m, vint8 a, vint8 b) {
+    return _mm256_castps_si256(_mm256_blendv_ps(_mm256_castsi256_ps(b.m), _mm256_castsi256_ps(a.m), m.m));
+}
+
+struct vfloat8 {
+    __m256 m;
+    static constexpr int size = 8;
+    vfloat8() = default;
+    vfloat8(__m256 v) : m(v) {}
+    vfloat8(float s) : m(_mm256_set1_ps(s)) {}
+    static vfloat8 load(const float* p) { return _mm256_load_ps(p); }
+    static vfloat8 loadu(const float* p) { return _mm256_loadu_ps(p); }
+    void store(float* p) const { _mm256_store_ps(p, m); }
+    friend vfloat8 operator+(vfloat8 a, vfloat8 b) { return _mm256_add_ps(a.m, b.m); }
+    friend vfloat8 operator-(vfloat8 a, vfloat8 b) { return _mm256_sub_ps(a.m, b.m); }
+    friend vfloat8 operator*(vfloat8 a, vfloat8 b) { return _mm256_mul_ps(a.m, b.m); }
+    friend vfloat8 operator/(vfloat8 a, vfloat8 b) { return _mm256_div_ps(a.m, b.m); }
+    friend vfloat8 operator-(vfloat8 a) { return _mm256_xor_ps(a.m, _mm256_set1_ps(-0.0f)); }
+    friend vbool8 operator<(vfloat8 a, vfloat8 b) { return _mm256_cmp_ps(a.m, b.m, _CMP_LT_OQ); }
+    friend vbool8 operator<=(vfloat8 a, vfloat8 b) { return _mm256_cmp_ps(a.m, b.m, _CMP_LE_OQ); }
+    friend vbool8 operator>(vfloat8 a, vfloat8 b) { return _mm256_cmp_ps(a.m, b.m, _CMP_GT_OQ); }
+    friend vbool8 operator>=(vfloat8 a, vfloat8 b) { return _mm256_cmp_ps(a.m, b.m, _CMP_GE_OQ); }
+    friend vbool8 operator==(vfloat8 a, vfloat8 b) { return _mm256_cmp_ps(a.m, b.m, _CMP_EQ_OQ); }
+};
+inline vfloat8 min(vfloat8 a, vfloat8 b) { return _mm256_min_ps(a.m, b.m); }
+inline vfloat8 max(vfloat8 a, vfloat8 b) { return _mm256_max_ps(a.m, b.m); }
+inline vfloat8 abs(vfloat8 a) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a.m); }
+inline vfloat8 signBit(vfloat8 a) { return _mm256_and_ps(a.m, _mm256_set1_ps(-0.0f)); }
+inline vfloat8 bitXor(vfloat8 a, vfloat8 b) { return _mm256_xor_ps(a.m, b.m); }
+inline vfloat8 select(vbool8 m, vfloat8 a, vfloat8 b) { return _mm256_blendv_ps(b.m, a.m, m.m); }
+inline vbool8 isFinite(vfloat8 a) { return abs(a) < vfloat8(__builtin_huge_valf()); }
+
+} // namespace wideray::simd

@@ -1,0 +1,25 @@
+#pragma once
+// Where tests find the shared real-world scenes (large meshes that are not in the repository).
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <system_error>
+
+namespace wideray {
+
+/// The directory named by $WIDERAY_SCENES, else WIDERAY_DEFAULT_SCENES_DIR (defined by the build);
+/// nullopt when neither names an existing directory, so tests that need it can skip.
+inline std::optional<std::filesystem::path> sharedScenesDir() {
+    std::filesystem::path dir;
+    if (const char* fromEnvironment = std::getenv("WIDERAY_SCENES"); fromEnvironment && *fromEnvironment)
+        dir = fromEnvironment;
+#ifdef WIDERAY_DEFAULT_SCENES_DIR
+    else
+        dir = WIDERAY_DEFAULT_SCENES_DIR;
+#endif
+    std::error_code error;
+    if (dir.empty() || !std::filesystem::is_directory(dir, error)) return std::nullopt;
+    return dir;
+}
+
+} // namespace wideray
