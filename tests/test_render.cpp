@@ -1,0 +1,79 @@
+// Renders: independent of the thread count, and stable against a stored reference image.
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+
+#include "core/fp_mode.h"
+#include "core/image.h"
+#include "core/renderer.h"
+#include "core/scene_parser.h"
+#include "kernels/tracer_factory.h"
+
+namespace wideray {
+namespace {
+
+const std::filesystem::path kSourceDir = WIDERAY_SOURCE_DIR;
+
+Image renderDefault(int threads, Aov aov, int width, int height, RenderStats* statsOut = nullptr) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    FlushToZeroScope ftz;
+    Scene scene = loadScene(kSourceDir / "scenes/default.json");
+    TriangleMesh world = flattenTriangles(scene);
+    TracerConfig config;
+    config.kernel = KernelChoice::Scalar;
+    BuiltTracer built = buildWiderayTracer(scene, world, config);
+    RenderOptions options;
+    options.width = width;
+    options.height = height;
+    options.aov = aov;
+    RenderStats stats;
+    Image image = render(scene, world, *built.tracer, options, stats);
+    if (statsOut) *statsOut = stats;
+    return image;
+}
+
+TEST(Render, DefaultSceneIsIdenticalWithOneAndTwoThreads) {
+    for (Aov aov : {Aov::Color, Aov::Cost}) {
+        Image one = renderDefault(1, aov, 200, 150), two = renderDefault(2, aov, 200, 150);
+        ASSERT_EQ(one.pixels.size(), two.pixels.size());
+        EXPECT_TRUE(one.pixels == two.pixels) << "aov " << int(aov);
+    }
+}
+
+TEST(Render, DefaultSceneMatchesStoredReference) {
+    Image image = renderDefault(2, Aov::Color, 160, 120);
+    Image reference = readImage(kSourceDir / "tests/data/default_160x120.png", true);
+    ASSERT_EQ(reference.width, 160);
+    ASSERT_EQ(reference.height, 120);
+    ASSERT_EQ(reference.channels, 3);
+    // Compared in 8-bit sRGB steps, as stored: allow rounding, and a few pixels of larger change.
+    std::filesystem::path written = std::filesystem::temp_directory_path() / "wideray_render_test.png";
+    writeImage(image, written, true);
+    Image roundTrip = readImage(written, true);
+    std::filesystem::remove(written);
+    double sum = 0;
+    size_t large = 0;
+    for (size_t i = 0; i < reference.pixels.size(); ++i) {
+        double d = std::abs(double(roundTrip.pixels[i]) - double(reference.pixels[i]));
+        sum += d;
+        large += d > 0.02;
+    }
+    EXPECT_LT(sum / double(reference.pixels.size()), 0.002);
+    EXPECT_LT(large, reference.pixels.size() / 200);
+}
+
+TEST(Render, AovsAreMeaningful) {
+    RenderStats stats;
+    Image cost = renderDefault(2, Aov::Cost, 64, 48, &stats);
+    EXPECT_GT(stats.maxCost, 1u);
+    EXPECT_EQ(stats.shadowRays, 0u);
+    Image depth = renderDefault(2, Aov::Depth, 64, 48);
+    ASSERT_EQ(depth.channels, 1);
+    float center = depth.at(32, 24)[0];
+    EXPECT_GT(center, 1.0f) << "the back of the room is several units away";
+    Image normal = renderDefault(2, Aov::Normal, 64, 48);
+    for (float v : normal.pixels) ASSERT_TRUE(v >= 0.0f && v <= 1.0f);
+}
+
+} // namespace
+} // namespace wideray
