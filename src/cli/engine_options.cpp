@@ -8,9 +8,10 @@ void addEngineOptions(CLI::App& app, EngineOptions& options) {
     app.add_option("--threads", options.threads, "Worker threads (default: all hardware threads)")
         ->check(CLI::Range(1, 4096));
     app.add_option("--kernel", options.kernel,
-                   "Traversal kernel: scalar, packet4, packet8, packet16, stream or auto (packets for "
-                   "coherent rays, the fastest measured kernel for incoherent ones)")
-        ->check(CLI::IsMember({"scalar", "packet4", "packet8", "packet16", "stream", "auto"}))
+                   "Traversal kernel: scalar (the reference), single (one ray, SIMD across children), "
+                   "packet4, packet8, packet16, stream, or auto (packets for coherent rays, the fastest "
+                   "measured kernel for incoherent ones)")
+        ->check(CLI::IsMember({"scalar", "single", "packet4", "packet8", "packet16", "stream", "auto"}))
         ->capture_default_str();
     app.add_option("--isa", options.isa,
                    "Instruction set of the kernels: sse42, avx2, avx512 or auto (the best this CPU has); "

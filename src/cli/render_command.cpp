@@ -12,6 +12,7 @@
 #include "core/fp_mode.h"
 #include "core/mesh_framing.h"
 #include "core/renderer.h"
+#include "kernels/embree_tracer.h"
 #include "kernels/tracer_factory.h"
 
 namespace wideray::cli {
@@ -23,6 +24,7 @@ struct RenderArgs {
     std::string size;
     int spp = 0;
     std::string aov = "color";
+    std::string backend = "wideray";
     EngineOptions engine;
 };
 
@@ -58,12 +60,30 @@ void normalizeDepth(Image& image, const std::filesystem::path& path) {
         for (float& d : image.pixels) d /= maxDepth;
 }
 
+/// The tracer the backend builds, what its build is called in the report ("BVH8") and the engine
+/// that traces (description, and our ISA).
+struct BackendTracer {
+    std::unique_ptr<Tracer> tracer;
+    std::string accelName, engine;
+};
+
+BackendTracer buildTracer(const RenderArgs& args, const Scene& scene, const TriangleMesh& world) {
+    if (parseBackend(args.backend) == Backend::Embree) {
+        auto tracer = std::make_unique<EmbreeTracer>(scene, world);
+        std::string engine = tracer->description();
+        return {std::move(tracer), "Embree BVH", engine};
+    }
+    BuiltTracer built = buildWiderayTracer(scene, world, makeTracerConfig(args.engine));
+    std::string engine = built.tracer->description() + " " + isaName(built.isa);
+    return {std::move(built.tracer), "BVH" + std::to_string(args.engine.bvhWidth), engine};
+}
+
 void renderOne(const RenderArgs& args, const std::string& sceneFile) {
     using Clock = std::chrono::steady_clock;
     Scene scene = loadSceneOrMesh(sceneFile, 1024, 1024);
     auto start = Clock::now();
     TriangleMesh world = flattenTriangles(scene);
-    BuiltTracer built = buildWiderayTracer(scene, world, makeTracerConfig(args.engine));
+    BackendTracer built = buildTracer(args, scene, world);
     double buildSeconds = std::chrono::duration<double>(Clock::now() - start).count();
 
     RenderOptions options;
@@ -78,12 +98,12 @@ void renderOne(const RenderArgs& args, const std::string& sceneFile) {
     std::filesystem::path out = outputPath(args, sceneFile);
     if (options.aov == Aov::Depth) normalizeDepth(image, out);
     writeImage(image, out, options.aov == Aov::Color);
-    fmt::print("{}: {}x{}, {} spp, {} triangles, BVH{} build {:.1f} ms, render {:.1f} ms, {} rays, "
-               "{:.2f} Mrays/s ({} {}) -> {}\n",
+    fmt::print("{}: {}x{}, {} spp, {} triangles, {} build {:.1f} ms, render {:.1f} ms, {} rays, "
+               "{:.2f} Mrays/s ({}) -> {}\n",
                sceneFile, image.width, image.height,
-               args.spp > 0 ? args.spp : scene.image.samplesPerPixel, world.triangles.size(), args.engine.bvhWidth,
+               args.spp > 0 ? args.spp : scene.image.samplesPerPixel, world.triangles.size(), built.accelName,
                buildSeconds * 1e3, stats.seconds * 1e3, stats.primaryRays + stats.shadowRays,
-               stats.mraysPerSecond(), built.tracer->description(), isaName(built.isa), out.string());
+               stats.mraysPerSecond(), built.engine, out.string());
     if (options.aov == Aov::Cost) fmt::print("  cost heatmap: max {} nodes + primitives per pixel\n", stats.maxCost);
     std::fflush(stdout);
 }
@@ -105,6 +125,11 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                     "What to write: color, normal (n * 0.5 + 0.5), depth (hit distance; scaled to [0,1] in "
                     "8-bit formats) or cost (heatmap of BVH nodes + primitives visited per pixel)")
         ->check(CLI::IsMember({"color", "normal", "depth", "cost"}))
+        ->capture_default_str();
+    cmd->add_option("--backend", args->backend,
+                    "Who traces the rays: wideray (our kernels) or embree (Intel Embree, with its default BVH "
+                    "and its widest native packets; --kernel, --isa and --bvh-width do not apply)")
+        ->check(CLI::IsMember({"wideray", "embree"}))
         ->capture_default_str();
     addEngineOptions(*cmd, args->engine);
     cmd->callback([args, &exitCode] {

@@ -29,7 +29,6 @@ struct UserBvhView {
     NodeRef root;
     const PrimRef* prims = nullptr;
     const Geometry* const* geometries = nullptr;  ///< indexed by geomId
-    bool empty() const { return nodes == nullptr && root.count() == 0; }
 };
 
 template <int N>

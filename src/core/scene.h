@@ -3,12 +3,14 @@
 // Meshes are stored once and placed by instances; `flattenTriangles` expands them to world space.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "core/mesh.h"
+#include "shading/texture.h"
 
 namespace wideray {
 
@@ -17,7 +19,7 @@ struct Camera {
     glm::vec3 lookAt{0.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     float fovY = 45.0f;          ///< vertical field of view in degrees
-    float aperture = 0.0f;       ///< lens radius; 0 is a pinhole (depth of field is reserved)
+    float aperture = 0.0f;       ///< lens radius; 0 is a pinhole
     float focusDistance = 0.0f;  ///< 0 means the distance to lookAt
 };
 
@@ -41,14 +43,21 @@ struct Light {
     int samples = 1;                     ///< shadow rays per shading point (area lights)
 };
 
-enum class MaterialType { Diffuse };
+enum class MaterialType { Diffuse, Plastic, Mirror, Conductor, Dielectric };
 
-/// A named material. Only Lambertian diffuse for now; `type` leaves room for the Fresnel and Beer
-/// materials (conductor, dielectric, ...) that the scene format reserves.
+/// A named material. Each type reads only its own fields; src/shading/material_model.h shades them.
 struct Material {
     std::string name;
     MaterialType type = MaterialType::Diffuse;
-    glm::vec3 color{0.8f};
+    glm::vec3 color{0.8f};                  ///< diffuse, plastic: albedo; mirror: reflectance
+    std::optional<Texture> colorTexture{};  ///< replaces `color` where set
+    float specular = 0.5f;                  ///< plastic: weight of the Blinn-Phong highlight
+    float shininess = 64.0f;                ///< plastic: Blinn-Phong exponent
+    glm::vec3 eta{1.0f}, k{0.0f};           ///< conductor: complex index of refraction eta + ik per channel
+    float ior = 1.5f;                       ///< dielectric: index of refraction (the outside is vacuum)
+    glm::vec3 absorption{0.0f};             ///< dielectric: Beer absorption coefficient per unit length
+    float roughness = 0.0f;                 ///< conductor, dielectric: 0 is smooth, up to 1 for glossy
+    std::optional<Texture> roughnessTexture{};  ///< replaces `roughness` where set
 };
 
 /// One placement of a mesh. `material` overrides the mesh's own materials unless it is kMeshMaterials.
@@ -65,11 +74,26 @@ struct Sphere {
     uint32_t material = 0;
 };
 
+/// A homogeneous medium filling the scene: light over a distance d keeps exp(-density d) of itself
+/// and gains `color` for the rest.
+struct Fog {
+    float density = 0.0f;  ///< 0: no fog
+    glm::vec3 color{1.0f};
+};
+
+struct RenderSettings {
+    int maxDepth = 8;             ///< bounces of reflection and refraction
+    float minThroughput = 0.01f;  ///< paths carrying less are ended
+    bool polarized = false;       ///< track s and p polarization through Fresnel events
+};
+
 struct Scene {
     std::filesystem::path file;  ///< where it was loaded from (for messages)
     Camera camera;
     ImageSettings image;
     glm::vec3 background{0.0f};
+    Fog fog;
+    RenderSettings render;
     std::vector<Light> lights;
     std::vector<Material> materials;  ///< scene materials first, then those imported from mesh files
     std::vector<TriangleMesh> meshes; ///< each mesh file once; faceMaterial indexes `materials`

@@ -19,6 +19,7 @@
 #include "core/error.h"
 #include "core/mesh_generators.h"
 #include "core/mesh_io.h"
+#include "shading/material_model.h"
 
 namespace wideray {
 namespace {
@@ -153,7 +154,14 @@ Json parseJson(const std::string& text, const std::string& file) {
 }
 
 const std::vector<std::string> kShapes = {"cube", "icosphere", "torus", "quad"};
-const std::vector<std::string> kReservedMaterialTypes = {"plastic", "mirror", "conductor", "dielectric"};
+const std::vector<std::string> kMaterialTypes = {"diffuse", "plastic", "mirror", "conductor", "dielectric"};
+const std::vector<std::pair<std::string, TextureType>> kTextureTypes = {
+    {"checker", TextureType::Checker}, {"noise", TextureType::Noise},   {"fbm", TextureType::Fbm},
+    {"turbulence", TextureType::Turbulence}, {"marble", TextureType::Marble}, {"image", TextureType::Image}};
+
+bool hasOctaves(TextureType type) {
+    return type == TextureType::Fbm || type == TextureType::Turbulence || type == TextureType::Marble;
+}
 
 class SceneReader {
 public:
@@ -163,10 +171,12 @@ public:
 
     Scene read(const Json& json) {
         const Node root{json, ""};
-        checkKeys(root, {"camera", "image", "background", "materials", "lights", "meshes", "objects"});
+        checkKeys(root, {"camera", "image", "background", "fog", "render", "materials", "lights", "meshes", "objects"});
         if (root.has("camera")) readCamera(root["camera"]);
         if (root.has("image")) readImage(root["image"]);
         if (root.has("background")) scene_.background = color(root["background"]);
+        if (root.has("fog")) readFog(root["fog"]);
+        if (root.has("render")) readRender(root["render"]);
         if (root.has("materials")) readMaterials(root["materials"]);
         if (root.has("lights")) readLights(root["lights"]);
         if (root.has("meshes")) readNamedMeshes(root["meshes"]);
@@ -231,6 +241,17 @@ private:
         return int(v);
     }
 
+    float unitInterval(const Node& n) const {
+        const float v = number(n);
+        if (!(v >= 0.0f && v <= 1.0f)) fail(n.path, "must be in [0, 1]");
+        return v;
+    }
+
+    bool boolean(const Node& n) const {
+        if (!n.value.is_boolean()) fail(n.path, "expected true or false, got " + describe(n.value));
+        return n.value.get<bool>();
+    }
+
     std::string string(const Node& n) const {
         if (!n.value.is_string()) fail(n.path, "expected a string, got " + describe(n.value));
         return n.value.get<std::string>();
@@ -267,7 +288,15 @@ private:
         return c;
     }
 
-    // ---- camera, image, materials, lights
+    /// A color that is a fraction of light, such as an albedo: components in [0, 1].
+    glm::vec3 reflectance(const Node& n) const {
+        const glm::vec3 c = color(n);
+        if (glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
+            fail(n.path, "a reflectance reflects at most all light: components must be in [0, 1]");
+        return c;
+    }
+
+    // ---- camera, image, fog, render settings
 
     void readCamera(const Node& n) {
         checkKeys(n, {"position", "look_at", "up", "fov", "aperture", "focus_distance"});
@@ -294,27 +323,172 @@ private:
         if (n.has("spp")) scene_.image.samplesPerPixel = integer(n["spp"], 1, 1 << 20);
     }
 
+    void readFog(const Node& n) {
+        checkKeys(n, {"density", "color"});
+        require(n, "density");
+        scene_.fog.density = nonNegative(n["density"]);
+        if (n.has("color")) scene_.fog.color = color(n["color"]);
+    }
+
+    void readRender(const Node& n) {
+        checkKeys(n, {"max_depth", "min_throughput", "polarized"});
+        RenderSettings& render = scene_.render;
+        if (n.has("max_depth")) render.maxDepth = integer(n["max_depth"], 0, 1024);
+        if (n.has("min_throughput")) render.minThroughput = unitInterval(n["min_throughput"]);
+        if (n.has("polarized")) render.polarized = boolean(n["polarized"]);
+    }
+
+    // ---- materials and textures
+
     void readMaterials(const Node& n) {
         expectObject(n);
         for (const auto& item : n.value.items()) {
             const Node m = n[item.key()];
             if (item.key().empty()) fail(m.path, "material names must not be empty");
-            require(m, "type");
-            const std::string type = string(m["type"]);
-            if (std::find(kReservedMaterialTypes.begin(), kReservedMaterialTypes.end(), type) != kReservedMaterialTypes.end())
-                fail(m["type"].path, "material type \"" + type + "\" is reserved for later; only \"diffuse\" exists now");
-            if (type != "diffuse")
-                fail(m["type"].path, "unknown material type \"" + type + "\" (expected \"diffuse\")");
-            checkKeys(m, {"type", "color"});
-            Material material{item.key(), MaterialType::Diffuse, Material{}.color};
-            if (m.has("color")) {
-                material.color = color(m["color"]);
-                if (glm::any(glm::greaterThan(material.color, glm::vec3(1.0f))))
-                    fail(m["color"].path, "a diffuse color reflects at most all light: components must be in [0, 1]");
-            }
-            addMaterial(std::move(material));
+            addMaterial(material(m, item.key()));
         }
     }
+
+    Material material(const Node& m, const std::string& name) {
+        expectObject(m);
+        require(m, "type");
+        const std::string type = string(m["type"]);
+        Material material;
+        material.name = name;
+        if (type == "diffuse") {
+            checkKeys(m, {"type", "color"});
+            readColor(m, material);
+        } else if (type == "plastic") {
+            checkKeys(m, {"type", "color", "specular", "shininess"});
+            material.type = MaterialType::Plastic;
+            readColor(m, material);
+            if (m.has("specular")) material.specular = unitInterval(m["specular"]);
+            if (m.has("shininess")) material.shininess = positive(m["shininess"]);
+        } else if (type == "mirror") {
+            checkKeys(m, {"type", "color"});
+            material.type = MaterialType::Mirror;
+            material.color = glm::vec3(1.0f);
+            readColor(m, material);
+        } else if (type == "conductor") {
+            checkKeys(m, {"type", "preset", "eta", "k", "roughness"});
+            material.type = MaterialType::Conductor;
+            readComplexIor(m, material);
+            readRoughness(m, material);
+        } else if (type == "dielectric") {
+            checkKeys(m, {"type", "ior", "absorption", "roughness"});
+            material.type = MaterialType::Dielectric;
+            if (m.has("ior")) {
+                material.ior = number(m["ior"]);
+                if (!(material.ior > 0.0f)) fail(m["ior"].path, "an index of refraction must be positive");
+            }
+            if (m.has("absorption")) {
+                material.absorption = vec3(m["absorption"]);
+                if (glm::any(glm::lessThan(material.absorption, glm::vec3(0.0f))))
+                    fail(m["absorption"].path, "absorption coefficients must not be negative");
+            }
+            readRoughness(m, material);
+        } else {
+            const std::string hint = suggestion(type, kMaterialTypes);
+            fail(m["type"].path, "unknown material type \"" + type + "\"" +
+                                     (hint.empty() ? " (expected " + joined(kMaterialTypes) + ")" : hint));
+        }
+        return material;
+    }
+
+    /// "color": [r, g, b] or a texture of reflectances.
+    void readColor(const Node& m, Material& material) {
+        if (!m.has("color")) return;
+        const Node c = m["color"];
+        if (c.value.is_object()) material.colorTexture = texture(c, false);
+        else material.color = reflectance(c);
+    }
+
+    /// "roughness": a number in [0, 1] or a texture of such numbers.
+    void readRoughness(const Node& m, Material& material) {
+        if (!m.has("roughness")) return;
+        const Node r = m["roughness"];
+        if (r.value.is_object()) material.roughnessTexture = texture(r, true);
+        else material.roughness = unitInterval(r);
+    }
+
+    /// Either "preset" (a measured metal) or both "eta" and "k".
+    void readComplexIor(const Node& m, Material& material) const {
+        if (m.has("preset")) {
+            if (m.has("eta") || m.has("k")) fail(m.path, "\"preset\" cannot be combined with \"eta\" or \"k\"");
+            const std::string preset = string(m["preset"]);
+            const std::optional<ComplexIor> ior = conductorPreset(preset);
+            if (!ior) {
+                const std::string hint = suggestion(preset, conductorPresetNames());
+                fail(m["preset"].path, "unknown conductor preset \"" + preset + "\"" + hint +
+                                           " (valid presets: " + joined(conductorPresetNames()) + ")");
+            }
+            material.eta = ior->eta;
+            material.k = ior->k;
+            return;
+        }
+        if (!m.has("eta") && !m.has("k")) fail(m.path, "a conductor needs \"preset\" or both \"eta\" and \"k\"");
+        require(m, "eta");
+        require(m, "k");
+        material.eta = vec3(m["eta"]);
+        if (!glm::all(glm::greaterThan(material.eta, glm::vec3(0.0f)))) fail(m["eta"].path, "eta components must be positive");
+        material.k = vec3(m["k"]);
+        if (glm::any(glm::lessThan(material.k, glm::vec3(0.0f)))) fail(m["k"].path, "k components must not be negative");
+    }
+
+    /// A texture object. In a color slot a pattern blends two "colors"; in a number slot (`scalar`),
+    /// two "values". Both are fractions in [0, 1].
+    Texture texture(const Node& n, bool scalar) {
+        require(n, "type");
+        const std::string type = string(n["type"]);
+        const auto known = std::find_if(kTextureTypes.begin(), kTextureTypes.end(), [&](const auto& t) { return t.first == type; });
+        if (known == kTextureTypes.end()) {
+            std::vector<std::string> names;
+            for (const auto& t : kTextureTypes) names.push_back(t.first);
+            const std::string hint = suggestion(type, names);
+            fail(n["type"].path, "unknown texture type \"" + type + "\"" + (hint.empty() ? " (expected " + joined(names) + ")" : hint));
+        }
+        Texture texture;
+        texture.type = known->second;
+        if (texture.type == TextureType::Image) {
+            checkKeys(n, {"type", "file"});
+            require(n, "file");
+            texture.image = textureImage(n["file"], !scalar, texture.file);
+            return texture;
+        }
+        const std::string blendKey = scalar ? "values" : "colors";
+        std::vector<std::string> keys = {"type", blendKey, "scale"};
+        if (hasOctaves(texture.type)) keys.push_back("octaves");
+        checkKeys(n, keys);
+        if (n.has(blendKey)) {
+            const Node blend = n[blendKey];
+            if (!blend.value.is_array() || blend.value.size() != 2)
+                fail(blend.path, "expected an array of 2 " + std::string(scalar ? "numbers" : "colors") + ", got " + describe(blend.value));
+            texture.color0 = scalar ? glm::vec3(unitInterval(blend[0])) : reflectance(blend[0]);
+            texture.color1 = scalar ? glm::vec3(unitInterval(blend[1])) : reflectance(blend[1]);
+        }
+        if (n.has("scale")) texture.scale = positive(n["scale"]);
+        if (n.has("octaves")) texture.octaves = integer(n["octaves"], 1, 16);
+        return texture;
+    }
+
+    /// Loads an image file once per scene (and per decoding: colors are sRGB-decoded, numbers are not).
+    std::shared_ptr<const Image> textureImage(const Node& n, bool srgb, std::filesystem::path& resolved) {
+        std::filesystem::path path = string(n);
+        if (path.empty()) fail(n.path, "texture file name is empty");
+        if (path.is_relative()) path = folder_ / path;
+        resolved = std::filesystem::absolute(path).lexically_normal();
+        auto& image = textureImages_[{resolved, srgb}];
+        if (!image) {
+            try {
+                image = std::make_shared<const Image>(wideray::readImage(resolved, srgb));
+            } catch (const InputError& e) {
+                fail(n.path, std::string("cannot load texture: ") + e.what());
+            }
+        }
+        return image;
+    }
+
+    // ---- lights
 
     void readLights(const Node& n) {
         expectArray(n);
@@ -682,11 +856,42 @@ private:
     std::map<std::string, uint32_t> meshNamed_;
     std::map<std::filesystem::path, uint32_t> meshOfFile_;
     std::set<std::string> materialPrefixes_;
+    std::map<std::pair<std::filesystem::path, bool>, std::shared_ptr<const Image>> textureImages_;
 };
 
 // ---- writing
 
 Json array(const glm::vec3& v) { return Json::array({v.x, v.y, v.z}); }
+
+Json textureJson(const Texture& texture, bool scalar) {
+    const auto named = std::find_if(kTextureTypes.begin(), kTextureTypes.end(), [&](const auto& t) { return t.second == texture.type; });
+    Json j = {{"type", named->first}};
+    if (texture.type == TextureType::Image) {
+        j["file"] = texture.file.string();
+        return j;
+    }
+    if (scalar) j["values"] = Json::array({texture.color0.x, texture.color1.x});
+    else j["colors"] = Json::array({array(texture.color0), array(texture.color1)});
+    j["scale"] = texture.scale;
+    if (hasOctaves(texture.type)) j["octaves"] = texture.octaves;
+    return j;
+}
+
+Json materialJson(const Material& m) {
+    const Json color = m.colorTexture ? textureJson(*m.colorTexture, false) : array(m.color);
+    const Json roughness = m.roughnessTexture ? textureJson(*m.roughnessTexture, true) : Json(m.roughness);
+    switch (m.type) {
+    case MaterialType::Diffuse: return {{"type", "diffuse"}, {"color", color}};
+    case MaterialType::Plastic:
+        return {{"type", "plastic"}, {"color", color}, {"specular", m.specular}, {"shininess", m.shininess}};
+    case MaterialType::Mirror: return {{"type", "mirror"}, {"color", color}};
+    case MaterialType::Conductor:
+        return {{"type", "conductor"}, {"eta", array(m.eta)}, {"k", array(m.k)}, {"roughness", roughness}};
+    case MaterialType::Dielectric:
+        return {{"type", "dielectric"}, {"ior", m.ior}, {"absorption", array(m.absorption)}, {"roughness", roughness}};
+    }
+    throw std::invalid_argument("writeScene: unknown material type");
+}
 
 Json lightJson(const Light& light) {
     Json j;
@@ -761,8 +966,11 @@ std::string writeScene(const Scene& scene) {
                       {"focus_distance", camera.focusDistance}};
     root["image"] = {{"width", scene.image.width}, {"height", scene.image.height}, {"spp", scene.image.samplesPerPixel}};
     root["background"] = array(scene.background);
+    root["fog"] = {{"density", scene.fog.density}, {"color", array(scene.fog.color)}};
+    root["render"] = {{"max_depth", scene.render.maxDepth}, {"min_throughput", scene.render.minThroughput},
+                      {"polarized", scene.render.polarized}};
     Json& materials = root["materials"] = Json::object();
-    for (const Material& m : scene.materials) materials[m.name] = {{"type", "diffuse"}, {"color", array(m.color)}};
+    for (const Material& m : scene.materials) materials[m.name] = materialJson(m);
     Json& lights = root["lights"] = Json::array();
     for (const Light& light : scene.lights) lights.push_back(lightJson(light));
     Json& meshes = root["meshes"] = Json::object();

@@ -6,7 +6,10 @@
 #include "core/wide_bvh.h"
 #include "simd/simd.h"
 
+#include "simd/isa_namespace.h"
+
 namespace wideray {
+inline namespace WIDERAY_ISA {
 
 /// Far distances are scaled up by 1 + 2^-16, far more than the slab test's rounding error (Ize 2013,
 /// "Robust BVH Ray Traversal"), so that a box is never culled before a triangle inside it.
@@ -37,7 +40,8 @@ inline void slabInterval(const F& nearX, const F& farX, const F& nearY, const F&
 }
 
 /// Tests all N children; returns the bit mask of those hit and writes their entry distances.
-/// W = 1 loops over the children with scalar floats (the reference); W = N does one SIMD test.
+/// W = 1 loops over the children with scalar floats (the reference); otherwise SIMD tests of W
+/// children at a time (W = N where the ISA is that wide).
 template <int N, int W>
 inline uint32_t intersectChildren(const WideNode<N>& node, const BoxRay& r, float tnear, float tfar,
                                   float* tEntryOut) {
@@ -57,14 +61,19 @@ inline uint32_t intersectChildren(const WideNode<N>& node, const BoxRay& r, floa
         }
         return mask;
     } else {
-        static_assert(W == N);
-        using F = simd::vfloat<N>;
-        F tEntry, tExit;
-        slabInterval(F::load(nx), F::load(fx), F::load(ny), F::load(fy), F::load(nz), F::load(fz), r, F(tnear),
-                     F(tfar), tEntry, tExit);
-        tEntry.store(tEntryOut);
-        return simd::movemask(tEntry <= tExit);
+        static_assert(N % W == 0);
+        using F = simd::vfloat<W>;
+        uint32_t mask = 0;
+        for (int c = 0; c < N; c += W) {
+            F tEntry, tExit;
+            slabInterval(F::load(nx + c), F::load(fx + c), F::load(ny + c), F::load(fy + c), F::load(nz + c),
+                         F::load(fz + c), r, F(tnear), F(tfar), tEntry, tExit);
+            tEntry.store(tEntryOut + c);
+            mask |= simd::movemask(tEntry <= tExit) << c;
+        }
+        return mask;
     }
 }
 
+} // namespace WIDERAY_ISA
 } // namespace wideray

@@ -4,7 +4,10 @@
 
 #include "core/ray.h"
 
+#include "simd/isa_namespace.h"
+
 namespace wideray {
+inline namespace WIDERAY_ISA {
 
 inline bool isCloser(float t, uint32_t geomId, uint32_t primId, const Hit& hit) {
     if (t != hit.t) return t < hit.t;
@@ -19,4 +22,5 @@ inline bool isValidRay(const Ray& r) {
            r.tnear <= r.tfar && r.tnear < __builtin_huge_valf();
 }
 
+} // namespace WIDERAY_ISA
 } // namespace wideray

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "core/sphere_geometry.h"
+#include "kernels/isa_kernels.h"
 #include "kernels/reference_kernel.h"
 #include "kernels/wideray_tracer.h"
 
@@ -9,8 +10,11 @@ namespace wideray {
 namespace {
 
 constexpr std::pair<KernelChoice, const char*> kKernelNames[] = {
-    {KernelChoice::Scalar, "scalar"},   {KernelChoice::Packet4, "packet4"}, {KernelChoice::Packet8, "packet8"},
+    {KernelChoice::Scalar, "scalar"},   {KernelChoice::Single, "single"},   {KernelChoice::Packet4, "packet4"},
+    {KernelChoice::Packet8, "packet8"},
     {KernelChoice::Packet16, "packet16"}, {KernelChoice::Stream, "stream"}, {KernelChoice::Auto, "auto"}};
+
+constexpr std::pair<Backend, const char*> kBackendNames[] = {{Backend::Wideray, "wideray"}, {Backend::Embree, "embree"}};
 
 template <int N>
 KernelSet<N> referenceKernel() {
@@ -18,20 +22,58 @@ KernelSet<N> referenceKernel() {
 }
 
 template <int N>
+KernelSet<N> pickKernel(const IsaKernelTable<N>& table, KernelChoice choice, Isa isa) {
+    KernelSet<N> k;
+    switch (choice) {
+    case KernelChoice::Scalar: return referenceKernel<N>();
+    case KernelChoice::Single: k = table.single; break;
+    case KernelChoice::Packet4: k = table.packet4; break;
+    case KernelChoice::Packet8: k = table.packet8; break;
+    case KernelChoice::Packet16: k = table.packet16; break;
+    case KernelChoice::Stream: k = table.stream; break;
+    case KernelChoice::Auto: break;
+    }
+    if (!k.intersect)
+        throw InputError("--kernel", "", std::string("kernel '") + kernelName(choice) + "' is not available with ISA " +
+                                             isaName(isa) + (choice == KernelChoice::Packet8 ? " (it needs avx2)" : "") +
+                                             (choice == KernelChoice::Packet16 ? " (it needs avx512)" : ""));
+    return k;
+}
+
+template <int N>
 BuiltTracer build(const Scene& scene, const TriangleMesh& world, const TracerConfig& config, Isa isa) {
+    IsaKernelTable<N> table = kernelTable<N>(isa);
+    KernelSet<N> coherent, incoherent;
+    if (config.kernel == KernelChoice::Auto) {
+        coherent = table.packet16.intersect ? table.packet16 : table.packet8.intersect ? table.packet8 : table.packet4;
+        incoherent = table.single;
+    } else {
+        coherent = incoherent = pickKernel(table, config.kernel, isa);
+    }
     auto accel = std::make_shared<const SceneAccel<N>>(world, userGeometries(scene));
     BuiltTracer out;
     out.timings = accel->timings();
     out.bytes = accel->bytes();
     out.isa = isa;
-    KernelSet<N> kernel = referenceKernel<N>();
-    if (config.kernel != KernelChoice::Scalar && config.kernel != KernelChoice::Auto)
-        throw InputError("--kernel", "", std::string("kernel '") + kernelName(config.kernel) + "' is not available yet");
-    out.tracer = std::make_unique<WiderayTracer<N>>(accel, kernel, kernel);
+    out.coherentKernel = coherent.name;
+    out.incoherentKernel = incoherent.name;
+    out.tracer = std::make_unique<WiderayTracer<N>>(accel, coherent, incoherent);
     return out;
 }
 
 } // namespace
+
+const char* backendName(Backend b) {
+    for (const auto& [kind, name] : kBackendNames)
+        if (kind == b) return name;
+    return "?";
+}
+
+std::optional<Backend> parseBackend(std::string_view name) {
+    for (const auto& [kind, n] : kBackendNames)
+        if (name == n) return kind;
+    return std::nullopt;
+}
 
 const char* kernelName(KernelChoice k) {
     for (const auto& [kind, name] : kKernelNames)

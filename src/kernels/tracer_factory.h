@@ -12,7 +12,16 @@
 
 namespace wideray {
 
-enum class KernelChoice { Scalar, Packet4, Packet8, Packet16, Stream, Auto };
+/// Who traces the rays: our kernels over the wide BVH, or Intel Embree (the yardstick).
+enum class Backend { Wideray, Embree };
+
+const char* backendName(Backend b);
+std::optional<Backend> parseBackend(std::string_view name);
+
+/// scalar: the reference; single: one ray at a time with SIMD box and triangle tests; packetK: K rays
+/// at a time; stream: sorted ray streams; auto: the widest packet for coherent rays and the fastest
+/// measured kernel for incoherent ones.
+enum class KernelChoice { Scalar, Single, Packet4, Packet8, Packet16, Stream, Auto };
 
 const char* kernelName(KernelChoice k);
 std::optional<KernelChoice> parseKernel(std::string_view name);
@@ -28,6 +37,7 @@ struct BuiltTracer {
     BuildTimings timings;
     size_t bytes = 0;
     Isa isa = Isa::Sse42;
+    std::string coherentKernel, incoherentKernel;
 };
 
 /// The scene's user geometry, indexed by geomId (entry 0, the triangles, is null).

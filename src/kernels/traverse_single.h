@@ -10,10 +10,17 @@
 #include "kernels/hit_order.h"
 #include "kernels/watertight.h"
 
+#include "simd/isa_namespace.h"
+
 namespace wideray {
+inline namespace WIDERAY_ISA {
 
 template <int N>
 constexpr int kStackSize = kMaxBvhDepth * (N - 1) + 1;
+
+/// How many children of an N-wide node one SIMD box test covers in this ISA.
+template <int N>
+constexpr int kNodeSimdWidth = N < kMaxWidth ? N : kMaxWidth;
 
 struct SingleRayState {
     BoxRay box;
@@ -110,18 +117,39 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
     }
 }
 
+/// The user geometry (spheres) part of a single-ray trace; returns true when occluded (any-hit).
+template <int N, int NodeW, bool AnyHit>
+inline bool traceUser(const UserBvhView<N>& user, const Ray& ray, const SingleRayState& s, Hit& hit,
+                      TraversalCost& cost) {
+    bool occluded = false;
+    traverseWide<N, NodeW>(
+        user.nodes, user.root, s.box, ray.tnear, [&] { return hit.t; },
+        [&](uint32_t first, uint32_t count) {
+            for (uint32_t i = first; i < first + count; ++i) {
+                ++cost.primitives;
+                PrimRef p = user.prims[i];
+                float t, u, v;
+                if (!user.geometries[p.geomId]->intersect(ray, p.primId, hit.t, t, u, v)) continue;
+                if (AnyHit) return occluded = true;
+                if (isCloser(t, p.geomId, p.primId, hit)) hit = {t, u, v, p.primId, p.geomId};
+            }
+            return false;
+        },
+        cost);
+    return occluded;
+}
+
 /// Closest hit (AnyHit = false) or occlusion (AnyHit = true, returns whether occluded) of one ray
 /// against the scene's triangles and user geometry. `hit` must start as a miss at ray.tfar.
 template <int N, int NodeW, int TriW, bool AnyHit>
 inline bool traceSingle(const SceneView<N>& scene, const Ray& ray, Hit& hit, TraversalCost& cost) {
     if (!isValidRay(ray)) return false;
-    SingleRayState s = makeSingleRayState(ray);
-    bool occluded = false;
-    auto tfar = [&] { return hit.t; };
+    const SingleRayState s = makeSingleRayState(ray);
     const TriangleBvhView<N>& tri = scene.triangles;
     if (tri.blocks) {
+        bool occluded = false;
         traverseWide<N, NodeW>(
-            tri.nodes, tri.root, s.box, ray.tnear, tfar,
+            tri.nodes, tri.root, s.box, ray.tnear, [&] { return hit.t; },
             [&](uint32_t first, uint32_t count) {
                 for (uint32_t b = first; b < first + count; ++b) {
                     cost.primitives += kBlockSize;
@@ -132,24 +160,8 @@ inline bool traceSingle(const SceneView<N>& scene, const Ray& ray, Hit& hit, Tra
             cost);
         if (occluded) return true;
     }
-    const UserBvhView<N>& user = scene.user;
-    if (user.prims) {
-        traverseWide<N, NodeW>(
-            user.nodes, user.root, s.box, ray.tnear, tfar,
-            [&](uint32_t first, uint32_t count) {
-                for (uint32_t i = first; i < first + count; ++i) {
-                    ++cost.primitives;
-                    PrimRef p = user.prims[i];
-                    float t, u, v;
-                    if (!user.geometries[p.geomId]->intersect(ray, p.primId, hit.t, t, u, v)) continue;
-                    if (AnyHit) return occluded = true;
-                    if (isCloser(t, p.geomId, p.primId, hit)) hit = {t, u, v, p.primId, p.geomId};
-                }
-                return false;
-            },
-            cost);
-    }
-    return occluded;
+    return scene.user.prims && traceUser<N, NodeW, AnyHit>(scene.user, ray, s, hit, cost);
 }
 
+} // namespace WIDERAY_ISA
 } // namespace wideray

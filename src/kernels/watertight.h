@@ -8,7 +8,10 @@
 
 #include "simd/simd.h"
 
+#include "simd/isa_namespace.h"
+
 namespace wideray {
+inline namespace WIDERAY_ISA {
 
 using namespace simd;
 
@@ -122,4 +125,5 @@ inline B intersectWatertight(const WatertightRay<F, I>& r, B valid, const F& v0x
     return valid;
 }
 
+} // namespace WIDERAY_ISA
 } // namespace wideray

@@ -14,7 +14,11 @@
 #include "simd/vfloat16.h"
 #endif
 
-namespace wideray::simd {
+#include "simd/isa_namespace.h"
+
+namespace wideray {
+inline namespace WIDERAY_ISA {
+namespace simd {
 
 // Scalar operations with the exact semantics of the vector ones (NaN picks the second operand).
 inline float min(float a, float b) { return a < b ? a : b; }
@@ -49,8 +53,29 @@ template <> struct Types<8> { using Float = vfloat8; using Int = vint8; using Bo
 template <> struct Types<16> { using Float = vfloat16; using Int = vint16; using Bool = vbool16; };
 #endif
 
+/// Writes the lanes of `values` selected by `mask` contiguously to out; returns how many.
+template <class I, class B>
+inline int compressStore(int32_t* out, const I& values, const B& mask) {
+    alignas(64) int32_t v[sizeof(I) / 4];
+    values.store(v);
+    int n = 0;
+    for (uint32_t bits = movemask(mask); bits; bits &= bits - 1) out[n++] = v[__builtin_ctz(bits)];
+    return n;
+}
+
+/// The widest vector this translation unit's ISA has.
+#if defined(__AVX512F__)
+constexpr int kMaxWidth = 16;
+#elif defined(__AVX2__)
+constexpr int kMaxWidth = 8;
+#else
+constexpr int kMaxWidth = 4;
+#endif
+
 template <int W> using vfloat = typename Types<W>::Float;
 template <int W> using vint = typename Types<W>::Int;
 template <int W> using vbool = typename Types<W>::Bool;
 
-} // namespace wideray::simd
+} // namespace simd
+} // namespace WIDERAY_ISA
+} // namespace wideray

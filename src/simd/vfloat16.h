@@ -4,7 +4,11 @@
 
 #include <cstdint>
 
-namespace wideray::simd {
+#include "simd/isa_namespace.h"
+
+namespace wideray {
+inline namespace WIDERAY_ISA {
+namespace simd {
 
 struct vbool16 {
     __mmask16 m;
@@ -73,6 +77,16 @@ inline vfloat16 bitXor(vfloat16 a, vfloat16 b) {
     return _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a.m), _mm512_castps_si512(b.m)));
 }
 inline vfloat16 select(vbool16 m, vfloat16 a, vfloat16 b) { return _mm512_mask_blend_ps(m.m, b.m, a.m); }
+inline vfloat16 gather(const float* base, vint16 index) { return _mm512_i32gather_ps(index.m, base, 4); }
+inline vint16 gather(const int32_t* base, vint16 index) { return _mm512_i32gather_epi32(index.m, base, 4); }
+/// Writes the lanes of `values` selected by `mask` contiguously to out; returns how many.
+inline int compressStore(int32_t* out, vint16 values, vbool16 mask) {
+    _mm512_mask_compressstoreu_epi32(out, mask.m, values.m);
+    return __builtin_popcount(mask.m);
+}
+inline float reduceMin(vfloat16 a) { return _mm512_reduce_min_ps(a.m); }
 inline vbool16 isFinite(vfloat16 a) { return abs(a) < vfloat16(__builtin_huge_valf()); }
 
-} // namespace wideray::simd
+} // namespace simd
+} // namespace WIDERAY_ISA
+} // namespace wideray

@@ -4,7 +4,11 @@
 
 #include <cstdint>
 
-namespace wideray::simd {
+#include "simd/isa_namespace.h"
+
+namespace wideray {
+inline namespace WIDERAY_ISA {
+namespace simd {
 
 struct vbool4 {
     __m128 m;
@@ -73,6 +77,23 @@ inline vfloat4 abs(vfloat4 a) { return _mm_andnot_ps(_mm_set1_ps(-0.0f), a.m); }
 inline vfloat4 signBit(vfloat4 a) { return _mm_and_ps(a.m, _mm_set1_ps(-0.0f)); }
 inline vfloat4 bitXor(vfloat4 a, vfloat4 b) { return _mm_xor_ps(a.m, b.m); }
 inline vfloat4 select(vbool4 m, vfloat4 a, vfloat4 b) { return _mm_blendv_ps(b.m, a.m, m.m); }
+inline vfloat4 gather(const float* base, vint4 index) {
+    alignas(16) int32_t i[4];
+    index.store(i);
+    return _mm_setr_ps(base[i[0]], base[i[1]], base[i[2]], base[i[3]]);
+}
+inline vint4 gather(const int32_t* base, vint4 index) {
+    alignas(16) int32_t i[4];
+    index.store(i);
+    return _mm_setr_epi32(base[i[0]], base[i[1]], base[i[2]], base[i[3]]);
+}
+inline float reduceMin(vfloat4 a) {
+    __m128 m = _mm_min_ps(a.m, _mm_shuffle_ps(a.m, a.m, _MM_SHUFFLE(2, 3, 0, 1)));
+    m = _mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
+    return _mm_cvtss_f32(m);
+}
 inline vbool4 isFinite(vfloat4 a) { return abs(a) < vfloat4(__builtin_huge_valf()); }
 
-} // namespace wideray::simd
+} // namespace simd
+} // namespace WIDERAY_ISA
+} // namespace wideray

@@ -4,7 +4,11 @@
 
 #include <cstdint>
 
-namespace wideray::simd {
+#include "simd/isa_namespace.h"
+
+namespace wideray {
+inline namespace WIDERAY_ISA {
+namespace simd {
 
 struct vbool8 {
     __m256 m;
@@ -72,6 +76,18 @@ inline vfloat8 abs(vfloat8 a) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a
 inline vfloat8 signBit(vfloat8 a) { return _mm256_and_ps(a.m, _mm256_set1_ps(-0.0f)); }
 inline vfloat8 bitXor(vfloat8 a, vfloat8 b) { return _mm256_xor_ps(a.m, b.m); }
 inline vfloat8 select(vbool8 m, vfloat8 a, vfloat8 b) { return _mm256_blendv_ps(b.m, a.m, m.m); }
+inline vfloat8 gather(const float* base, vint8 index) { return _mm256_i32gather_ps(base, index.m, 4); }
+inline vint8 gather(const int32_t* base, vint8 index) {
+    return _mm256_i32gather_epi32(reinterpret_cast<const int*>(base), index.m, 4);
+}
+inline float reduceMin(vfloat8 a) {
+    __m128 m = _mm_min_ps(_mm256_castps256_ps128(a.m), _mm256_extractf128_ps(a.m, 1));
+    m = _mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(2, 3, 0, 1)));
+    m = _mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
+    return _mm_cvtss_f32(m);
+}
 inline vbool8 isFinite(vfloat8 a) { return abs(a) < vfloat8(__builtin_huge_valf()); }
 
-} // namespace wideray::simd
+} // namespace simd
+} // namespace WIDERAY_ISA
+} // namespace wideray

@@ -1,0 +1,88 @@
+// The kernels of one ISA, compiled from the same source for each: a translation unit in
+// kernels/isa/ defines WIDERAY_ISA (the namespace) and WIDERAY_ISA_TABLE (the table's name) and
+// includes this file with its ISA's compiler flags.
+#include "kernels/isa_kernels.h"
+#include "kernels/traverse_stream.h"
+
+namespace wideray {
+inline namespace WIDERAY_ISA {
+namespace {
+
+template <int N>
+void singleIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
+    for (size_t i = 0; i < count; ++i) {
+        TraversalCost cost;
+        Hit hit;
+        hit.t = rays[i].tfar;
+        traceSingle<N, kNodeSimdWidth<N>, kBlockSize, false>(scene, rays[i], hit, cost);
+        hits[i] = hit.valid() ? hit : Hit{};
+        if (costs) costs[i] = cost;
+    }
+}
+
+template <int N>
+void singleOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count) {
+    for (size_t i = 0; i < count; ++i) {
+        TraversalCost cost;
+        Hit hit;
+        hit.t = rays[i].tfar;
+        occluded[i] = traceSingle<N, kNodeSimdWidth<N>, kBlockSize, true>(scene, rays[i], hit, cost) ? 1 : 0;
+    }
+}
+
+/// Packets of K consecutive rays; per-ray costs (the cost AOV) come from the single-ray kernel.
+template <int N, int K>
+void packetIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
+    if (costs) return singleIntersect<N>(scene, rays, hits, count, costs);
+    for (size_t i = 0; i < count; i += K)
+        tracePacket<N, K, false>(scene, rays + i, int(count - i < K ? count - i : K), hits + i, nullptr);
+}
+
+template <int N, int K>
+void packetOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count) {
+    for (size_t i = 0; i < count; i += K)
+        tracePacket<N, K, true>(scene, rays + i, int(count - i < K ? count - i : K), nullptr, occluded + i);
+}
+
+/// Streams of up to kStreamSize rays, SIMD across the widest vector of the ISA.
+constexpr size_t kStreamSize = 4096;
+
+template <int N>
+void streamIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
+    if (costs) return singleIntersect<N>(scene, rays, hits, count, costs);
+    StreamWorkspace& ws = StreamWorkspace::forThisThread();
+    for (size_t i = 0; i < count; i += kStreamSize)
+        traceStream<N, kMaxWidth, false>(scene, rays + i, count - i < kStreamSize ? count - i : kStreamSize, hits + i,
+                                         nullptr, ws);
+}
+
+template <int N>
+void streamOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count) {
+    StreamWorkspace& ws = StreamWorkspace::forThisThread();
+    for (size_t i = 0; i < count; i += kStreamSize)
+        traceStream<N, kMaxWidth, true>(scene, rays + i, count - i < kStreamSize ? count - i : kStreamSize, nullptr,
+                                        occluded + i, ws);
+}
+
+template <int N>
+IsaKernelTable<N> makeTable() {
+    IsaKernelTable<N> t;
+    t.single = {"single", &singleIntersect<N>, &singleOccluded<N>};
+    t.packet4 = {"packet4", &packetIntersect<N, 4>, &packetOccluded<N, 4>};
+#if defined(__AVX2__)
+    t.packet8 = {"packet8", &packetIntersect<N, 8>, &packetOccluded<N, 8>};
+#endif
+#if defined(__AVX512F__)
+    t.packet16 = {"packet16", &packetIntersect<N, 16>, &packetOccluded<N, 16>};
+#endif
+    t.stream = {"stream", &streamIntersect<N>, &streamOccluded<N>};
+    return t;
+}
+
+} // namespace
+} // namespace WIDERAY_ISA
+
+template <> IsaKernelTable<4> WIDERAY_ISA_TABLE<4>() { return makeTable<4>(); }
+template <> IsaKernelTable<8> WIDERAY_ISA_TABLE<8>() { return makeTable<8>(); }
+
+} // namespace wideray

@@ -1,0 +1,35 @@
+#pragma once
+// Memory of the stream kernel, per thread and reused across streams. It is allocated and sorted by
+// baseline code so that no standard-library code is instantiated with AVX flags (the linker could
+// otherwise hand an AVX-512 copy of it to code running on a CPU without AVX-512).
+#include <cstddef>
+#include <cstdint>
+
+namespace wideray {
+
+struct StreamWorkspace {
+    // Per ray of the stream, in sorted order.
+    float *ox = nullptr, *oy = nullptr, *oz = nullptr, *rdx = nullptr, *rdy = nullptr, *rdz = nullptr;
+    float *tnear = nullptr, *tfar = nullptr, *sx = nullptr, *sy = nullptr, *sz = nullptr, *u = nullptr, *v = nullptr;
+    int32_t *kx = nullptr, *ky = nullptr, *kz = nullptr, *prim = nullptr;
+    uint32_t* rayOf = nullptr;  ///< stream slot -> index in the caller's array
+    uint64_t* keys = nullptr;   ///< sort keys: (octant, Morton code) << 32 | ray index
+    size_t capacity = 0;
+    int32_t* arena = nullptr;   ///< the ray lists of the nodes waiting on the traversal stack
+    size_t arenaCapacity = 0;
+
+    StreamWorkspace() = default;
+    StreamWorkspace(const StreamWorkspace&) = delete;
+    StreamWorkspace& operator=(const StreamWorkspace&) = delete;
+    ~StreamWorkspace();
+
+    void reserveRays(size_t n);
+    /// Grows the arena to at least n entries, keeping its contents.
+    void reserveArena(size_t n);
+
+    static StreamWorkspace& forThisThread();
+};
+
+void sortStreamKeys(uint64_t* keys, size_t count);
+
+} // namespace wideray

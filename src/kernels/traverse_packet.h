@@ -1,0 +1,243 @@
+#pragma once
+// Packet traversal: K rays (a 2x2, 4x2 or 4x4 pixel block for K = 4, 8, 16) walk the wide BVH
+// together. Each child box is tested against all active rays in one K-wide operation; a subtree is
+// entered with the rays that hit its box, culled per ray against that ray's closest hit, and left
+// to single-ray traversal once few rays remain active (Wald et al. 2001, "Interactive Rendering
+// with Coherent Ray Tracing"; Embree's hybrid packet/single-ray scheme, Benthin et al. 2012).
+// Triangle tests run the same watertight arithmetic per lane as the scalar reference, so results
+// are bit-identical.
+#include "kernels/traverse_single.h"
+
+#include "simd/isa_namespace.h"
+
+namespace wideray {
+inline namespace WIDERAY_ISA {
+
+template <int K>
+struct PacketRay {
+    vfloat<K> ox, oy, oz, rdx, rdy, rdz, tnear;
+    vbool<K> negX, negY, negZ;
+    WatertightRay<vfloat<K>, vint<K>> woop;
+};
+
+/// Hits in SIMD registers; primId is INT32_MAX for "none yet" so that the tie rule is one compare.
+template <int K>
+struct PacketHit {
+    vfloat<K> t, u, v;
+    vint<K> primId;
+};
+
+constexpr int32_t kNoPrim = INT32_MAX;
+
+/// Loads up to K rays; invalid and missing lanes get tnear = +inf, tfar = -inf and stay inactive.
+template <int K>
+inline vbool<K> loadPacket(const Ray* rays, int count, PacketRay<K>& p, PacketHit<K>& h) {
+    using F = vfloat<K>;
+    alignas(64) float ox[K], oy[K], oz[K], dx[K], dy[K], dz[K], tn[K], tf[K];
+    for (int i = 0; i < K; ++i) {
+        bool valid = i < count && isValidRay(rays[i]);
+        const Ray r = valid ? rays[i] : Ray{};
+        ox[i] = r.ox; oy[i] = r.oy; oz[i] = r.oz;
+        dx[i] = r.dx; dy[i] = r.dy; dz[i] = r.dz;
+        tn[i] = valid ? r.tnear : __builtin_huge_valf();
+        tf[i] = valid ? r.tfar : -__builtin_huge_valf();
+    }
+    F Dx = F::load(dx), Dy = F::load(dy), Dz = F::load(dz);
+    p.ox = F::load(ox); p.oy = F::load(oy); p.oz = F::load(oz);
+    p.rdx = F(1.0f) / Dx; p.rdy = F(1.0f) / Dy; p.rdz = F(1.0f) / Dz;
+    p.negX = p.rdx < F(0.0f); p.negY = p.rdy < F(0.0f); p.negZ = p.rdz < F(0.0f);
+    p.tnear = F::load(tn);
+    p.woop = makeWatertightRay<F, vint<K>>(p.ox, p.oy, p.oz, Dx, Dy, Dz);
+    h.t = F::load(tf);
+    h.u = h.v = F(0.0f);
+    h.primId = vint<K>(kNoPrim);
+    return p.tnear <= h.t;
+}
+
+/// Entry distances of the packet into child i of a node; +inf for rays that miss or are inactive.
+template <int N, int K>
+inline vfloat<K> packetChildEntry(const WideNode<N>& node, int i, const PacketRay<K>& p, const vfloat<K>& tfar,
+                                  const vbool<K>& active) {
+    using F = vfloat<K>;
+    F lx(node.lowerX[i]), ux(node.upperX[i]), ly(node.lowerY[i]), uy(node.upperY[i]), lz(node.lowerZ[i]),
+        uz(node.upperZ[i]);
+    F tx0 = (select(p.negX, ux, lx) - p.ox) * p.rdx, tx1 = (select(p.negX, lx, ux) - p.ox) * p.rdx;
+    F ty0 = (select(p.negY, uy, ly) - p.oy) * p.rdy, ty1 = (select(p.negY, ly, uy) - p.oy) * p.rdy;
+    F tz0 = (select(p.negZ, uz, lz) - p.oz) * p.rdz, tz1 = (select(p.negZ, lz, uz) - p.oz) * p.rdz;
+    F tEntry = max(tx0, max(ty0, max(tz0, p.tnear)));
+    F tExit = min(tx1, min(ty1, min(tz1, tfar))) * F(kRobustFarScale);
+    return select(active & (tEntry <= tExit), tEntry, F(__builtin_huge_valf()));
+}
+
+/// All K rays against the triangles of one block. Returns the lanes that hit (for any-hit).
+template <int K, bool AnyHit>
+inline vbool<K> intersectBlockPacket(const TriangleBlock<kBlockSize>& block, const PacketRay<K>& p,
+                                     vbool<K> active, PacketHit<K>& h) {
+    using F = vfloat<K>;
+    using I = vint<K>;
+    vbool<K> anyHit(false);
+    for (int j = 0; j < kBlockSize && block.primId[j] != kInvalidId; ++j) {
+        F t = h.t, u = h.u, v = h.v;
+        vbool<K> hit = intersectWatertight(p.woop, active, F(block.v0x[j]), F(block.v0y[j]), F(block.v0z[j]),
+                                           F(block.v1x[j]), F(block.v1y[j]), F(block.v1z[j]), F(block.v2x[j]),
+                                           F(block.v2y[j]), F(block.v2z[j]), p.tnear, h.t, t, u, v);
+        if (none(hit)) continue;
+        if constexpr (AnyHit) {
+            anyHit |= hit;
+            active = andNot(active, hit);
+            continue;
+        }
+        I prim(int32_t(block.primId[j]));
+        vbool<K> closer = hit & ((t < h.t) | ((t == h.t) & (prim < h.primId)));
+        h.t = select(closer, t, h.t);
+        h.u = select(closer, u, h.u);
+        h.v = select(closer, v, h.v);
+        h.primId = select(closer, prim, h.primId);
+    }
+    return anyHit;
+}
+
+template <int K>
+struct PacketLanes {
+    alignas(64) float t[K], u[K], v[K];
+    alignas(64) int32_t prim[K];
+
+    void store(const PacketHit<K>& h) { h.t.store(t); h.u.store(u); h.v.store(v); h.primId.store(prim); }
+    void load(PacketHit<K>& h) const {
+        h.t = vfloat<K>::load(t); h.u = vfloat<K>::load(u); h.v = vfloat<K>::load(v); h.primId = vint<K>::load(prim);
+    }
+    Hit hit(int lane, uint32_t geomId) const {
+        return prim[lane] == kNoPrim ? Hit{t[lane], 0, 0, kInvalidId, kInvalidId}
+                                     : Hit{t[lane], u[lane], v[lane], uint32_t(prim[lane]), geomId};
+    }
+};
+
+/// Closest hits (or occlusion) of up to K rays. `switchToSingle`: at most this many active rays
+/// finish the subtree one by one.
+template <int N, int K, bool AnyHit>
+inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut) {
+    using F = vfloat<K>;
+    constexpr int switchToSingle = K / 4;
+    PacketRay<K> p;
+    PacketHit<K> h;
+    const vbool<K> valid = loadPacket(rays, count, p, h);
+    vbool<K> done = andNot(vbool<K>(true), valid);  // any-hit: lanes whose answer is known
+    const TriangleBvhView<N>& tri = scene.triangles;
+    const F inf(__builtin_huge_valf());
+
+    if (tri.blocks && any(valid)) {
+        struct alignas(64) Entry {
+            F dist;
+            NodeRef ref;
+        };
+        Entry stack[kStackSize<N>];
+        int sp = 0;
+        stack[sp++] = {select(valid, p.tnear, inf), tri.root};
+        while (sp > 0) {
+            Entry e = stack[--sp];
+            vbool<K> active = e.dist <= h.t * F(kRobustFarScale);
+            if constexpr (AnyHit) active = andNot(active, done);
+            uint32_t activeBits = movemask(active);
+            if (!activeBits) continue;
+            if (__builtin_popcount(activeBits) <= switchToSingle) {
+                PacketLanes<K> lanes;
+                lanes.store(h);
+                for (; activeBits; activeBits &= activeBits - 1) {
+                    int lane = __builtin_ctz(activeBits);
+                    const Ray& ray = rays[lane];
+                    Hit hit = lanes.hit(lane, 0);
+                    SingleRayState s = makeSingleRayState(ray);
+                    bool occluded = false;
+                    TraversalCost cost;
+                    traverseWide<N, kNodeSimdWidth<N>>(
+                        tri.nodes, e.ref, s.box, ray.tnear, [&] { return hit.t; },
+                        [&](uint32_t first, uint32_t n) {
+                            for (uint32_t b = first; b < first + n; ++b)
+                                if (intersectBlock<kBlockSize, AnyHit>(tri.blocks[b], s, ray, hit)) return occluded = true;
+                            return false;
+                        },
+                        cost);
+                    if (AnyHit && occluded) {
+                        lanes.t[lane] = -__builtin_huge_valf();
+                        lanes.prim[lane] = 0;
+                    } else if (hit.valid()) {
+                        lanes.t[lane] = hit.t; lanes.u[lane] = hit.u; lanes.v[lane] = hit.v;
+                        lanes.prim[lane] = int32_t(hit.primId);
+                    }
+                }
+                lanes.load(h);
+                if constexpr (AnyHit) done |= h.t == F(-__builtin_huge_valf());
+                continue;
+            }
+
+            NodeRef ref = e.ref;
+            while (!ref.isLeaf()) {
+                const WideNode<N>& node = tri.nodes[ref.index()];
+                Entry hitChildren[N];
+                float order[N];
+                int n = 0;
+                for (int i = 0; i < N; ++i) {
+                    if (node.child[i].bits == NodeRef().bits) continue;
+                    F dist = packetChildEntry<N, K>(node, i, p, h.t, active);
+                    vbool<K> hit = dist < inf;
+                    if (none(hit)) continue;
+                    // Insert sorted by the nearest ray's entry, farthest first.
+                    float key = reduceMin(dist);
+                    int j = n++;
+                    for (; j > 0 && order[j - 1] < key; --j) {
+                        hitChildren[j] = hitChildren[j - 1];
+                        order[j] = order[j - 1];
+                    }
+                    hitChildren[j] = {dist, node.child[i]};
+                    order[j] = key;
+                }
+                if (n == 0) goto pop;
+                for (int i = 0; i < n - 1; ++i) stack[sp++] = hitChildren[i];
+                ref = hitChildren[n - 1].ref;
+                active = hitChildren[n - 1].dist < inf;
+            }
+            for (uint32_t b = ref.first(); b < ref.first() + ref.count(); ++b) {
+                vbool<K> hit = intersectBlockPacket<K, AnyHit>(tri.blocks[b], p, active, h);
+                if constexpr (AnyHit) {
+                    done |= hit;
+                    h.t = select(hit, F(-__builtin_huge_valf()), h.t);
+                    active = andNot(active, hit);
+                    if (all(done)) goto finished;
+                }
+            }
+        pop:;
+        }
+    finished:;
+    }
+
+    PacketLanes<K> lanes;
+    lanes.store(h);
+    uint32_t validBits = movemask(valid);
+    for (int lane = 0; lane < count; ++lane) {
+        if (!(validBits >> lane & 1)) {
+            if constexpr (AnyHit) occludedOut[lane] = 0;
+            else hitsOut[lane] = Hit{};
+            continue;
+        }
+        if constexpr (AnyHit) {
+            bool occluded = lanes.t[lane] == -__builtin_huge_valf();
+            if (!occluded && scene.user.prims) {
+                Hit hit;
+                hit.t = rays[lane].tfar;
+                TraversalCost cost;
+                occluded = traceUser<N, kNodeSimdWidth<N>, true>(scene.user, rays[lane], makeSingleRayState(rays[lane]), hit, cost);
+            }
+            occludedOut[lane] = occluded ? 1 : 0;
+        } else {
+            Hit hit = lanes.hit(lane, 0);
+            if (scene.user.prims) {
+                TraversalCost cost;
+                traceUser<N, kNodeSimdWidth<N>, false>(scene.user, rays[lane], makeSingleRayState(rays[lane]), hit, cost);
+            }
+            hitsOut[lane] = hit.valid() ? hit : Hit{};
+        }
+    }
+}
+
+} // namespace WIDERAY_ISA
+} // namespace wideray

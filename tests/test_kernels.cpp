@@ -1,0 +1,178 @@
+// Every kernel (single, packet4/8/16, stream; every ISA this CPU has; N = 4 and 8) returns exactly
+// the hits of the scalar reference: the same primitive and the same t, bit for bit, and the same
+// occlusion.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "core/camera.h"
+#include "core/fp_mode.h"
+#include "core/mesh_framing.h"
+#include "core/mesh_generators.h"
+#include "core/mesh_io.h"
+#include "core/scene_accel.h"
+#include "core/sphere_geometry.h"
+#include "core/tile_order.h"
+#include "kernels/isa_kernels.h"
+#include "kernels/reference_kernel.h"
+#include "ray_sets.h"
+#include "test_data.h"
+
+namespace wideray {
+namespace {
+
+/// Camera rays in 16x16 tiles, Morton order inside each (as the renderer makes them).
+std::vector<Ray> primaryRays(const Scene& scene, int width, int height) {
+    CameraModel camera(scene.camera, width, height);
+    std::vector<Ray> rays;
+    std::vector<uint32_t> morton = mortonPixelOrder(16);
+    for (const TileRect& tile : hilbertTiles(width, height, 16))
+        for (uint32_t local : morton) {
+            int x = tile.x0 + int(local % 16), y = tile.y0 + int(local / 16);
+            if (x < tile.x1 && y < tile.y1) rays.push_back(camera.generate(float(x) + 0.5f, float(y) + 0.5f));
+        }
+    return rays;
+}
+
+/// From each primary hit toward the scene's first light (like the renderer's shadow rays).
+template <int N>
+std::vector<Ray> shadowRays(const SceneAccel<N>& accel, const std::vector<Ray>& primary, const glm::vec3& light) {
+    std::vector<Hit> hits(primary.size());
+    reference::intersect<N>(accel.view(), primary.data(), hits.data(), primary.size(), nullptr);
+    std::vector<Ray> rays;
+    for (size_t i = 0; i < primary.size(); ++i) {
+        if (!hits[i].valid()) continue;
+        const Ray& r = primary[i];
+        glm::vec3 p = glm::vec3(r.ox, r.oy, r.oz) + hits[i].t * glm::vec3(r.dx, r.dy, r.dz);
+        glm::vec3 d = light - p;
+        float dist = glm::length(d);
+        d /= dist;
+        rays.push_back({p.x, p.y, p.z, d.x, d.y, d.z, 1e-4f * dist, dist});
+    }
+    return rays;
+}
+
+std::vector<Isa> availableIsas() {
+    std::vector<Isa> isas;
+    for (Isa isa : {Isa::Sse42, Isa::Avx2, Isa::Avx512})
+        if (cpuSupports(isa)) isas.push_back(isa);
+    return isas;
+}
+
+template <int N>
+std::vector<KernelSet<N>> kernelsOf(const IsaKernelTable<N>& t) {
+    std::vector<KernelSet<N>> all;
+    for (const KernelSet<N>& k : {t.single, t.packet4, t.packet8, t.packet16, t.stream})
+        if (k.intersect) all.push_back(k);
+    return all;
+}
+
+template <int N>
+void expectAllKernelsMatchReference(const SceneAccel<N>& accel, const std::vector<Ray>& rays, const char* what) {
+    std::vector<Hit> expected(rays.size());
+    std::vector<uint8_t> expectedOccluded(rays.size());
+    reference::intersect<N>(accel.view(), rays.data(), expected.data(), rays.size(), nullptr);
+    reference::occluded<N>(accel.view(), rays.data(), expectedOccluded.data(), rays.size());
+    for (Isa isa : availableIsas())
+        for (const KernelSet<N>& kernel : kernelsOf(kernelTable<N>(isa))) {
+            std::vector<Hit> hits(rays.size());
+            std::vector<uint8_t> occluded(rays.size(), 7);
+            kernel.intersect(accel.view(), rays.data(), hits.data(), rays.size(), nullptr);
+            kernel.occluded(accel.view(), rays.data(), occluded.data(), rays.size());
+            size_t hitMismatches = 0, occlusionMismatches = 0;
+            for (size_t i = 0; i < rays.size(); ++i) {
+                const Hit &a = hits[i], &b = expected[i];
+                bool same = a.primId == b.primId && a.geomId == b.geomId &&
+                            std::memcmp(&a.t, &b.t, 4) == 0 && std::memcmp(&a.u, &b.u, 4) == 0 &&
+                            std::memcmp(&a.v, &b.v, 4) == 0;
+                if (!same && ++hitMismatches <= 3)
+                    ADD_FAILURE() << what << " " << kernel.name << " " << isaName(isa) << " N=" << N << " ray " << i
+                                  << ": prim " << a.primId << " t " << a.t << " vs reference prim " << b.primId
+                                  << " t " << b.t;
+                occlusionMismatches += occluded[i] != expectedOccluded[i];
+            }
+            EXPECT_EQ(hitMismatches, 0u) << what << " " << kernel.name << " " << isaName(isa) << " N=" << N;
+            EXPECT_EQ(occlusionMismatches, 0u) << what << " " << kernel.name << " " << isaName(isa) << " N=" << N;
+        }
+}
+
+template <int N>
+void checkScene(const Scene& scene, int size) {
+    FlushToZeroScope ftz;
+    TriangleMesh world = flattenTriangles(scene);
+    std::vector<std::unique_ptr<Geometry>> geometries;
+    geometries.emplace_back();
+    if (!scene.spheres.empty()) geometries.push_back(std::make_unique<SphereGeometry>(scene.spheres));
+    SceneAccel<N> accel(world, std::move(geometries));
+    std::vector<Ray> primary = primaryRays(scene, size, size);
+    expectAllKernelsMatchReference(accel, primary, "primary");
+    expectAllKernelsMatchReference(accel, shadowRays(accel, primary, scene.lights.at(0).position), "shadow");
+    if (!world.triangles.empty())
+        expectAllKernelsMatchReference(accel, testing::randomRays(world, size_t(size) * size / 4, 11), "random");
+}
+
+TEST(Kernels, MatchReferenceOnDefaultScene) {
+    Scene scene = loadSceneOrMesh(std::filesystem::path(WIDERAY_SOURCE_DIR) / "scenes/default.json");
+    checkScene<4>(scene, 128);
+    checkScene<8>(scene, 128);
+}
+
+TEST(Kernels, MatchReferenceOnGeneratedMeshes) {
+    Scene scene;
+    scene.meshes = {makeTorus(1.0f, 0.3f, 96, 48)};
+    scene.instances.push_back({});
+    scene.camera.position = {0.5f, 2.0f, 3.0f};
+    scene.lights.push_back({});
+    scene.lights[0].position = {1.0f, 3.0f, 1.0f};
+    scene.materials.push_back({});
+    checkScene<4>(scene, 96);
+    checkScene<8>(scene, 96);
+}
+
+class SharedMeshKernels : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SharedMeshKernels, MatchReference) {
+    auto dir = sharedScenesDir();
+    if (!dir) GTEST_SKIP() << "needs ../shared/scenes (or WIDERAY_SCENES)";
+#ifdef WIDERAY_SANITIZE
+    const int size = 64;
+#else
+    const int size = 256;
+#endif
+    Scene scene = sceneFromMesh(*dir / GetParam(), size, size);
+    scene.lights[0].position = scene.camera.position + (scene.lights[0].position - scene.camera.position) * 0.5f;
+    checkScene<8>(scene, size);
+    checkScene<4>(scene, size / 2);
+}
+
+INSTANTIATE_TEST_SUITE_P(RealMeshes, SharedMeshKernels,
+                         ::testing::Values("teapot/teapot.obj", "stanford-bunny/bun_zipper.ply",
+                                           "crytek-sponza/sponza.obj",
+                                           "bitterli-country-kitchen/country_kitchen_merged.ply"));
+
+TEST(Kernels, EdgeCases) {
+    FlushToZeroScope ftz;
+    TriangleMesh mesh = makeIcosphere(3);
+    SceneAccel<8> accel(mesh, {});
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    std::vector<Ray> rays = testing::randomRays(mesh, 4097, 5);
+    // Invalid rays scattered through packets: NaN/Inf directions and origins, tnear > tfar, zero direction.
+    for (size_t i = 0; i < rays.size(); i += 7) {
+        switch ((i / 7) % 6) {
+        case 0: rays[i].dx = nan; break;
+        case 1: rays[i].dy = inf; break;
+        case 2: rays[i].ox = -inf; break;
+        case 3: rays[i].tnear = 5.0f; rays[i].tfar = 1.0f; break;
+        case 4: rays[i].dx = rays[i].dy = rays[i].dz = 0.0f; break;
+        case 5: rays[i].tfar = nan; break;
+        }
+    }
+    expectAllKernelsMatchReference(accel, rays, "edge cases (4097 rays)");
+    for (size_t count : {size_t(1), size_t(3), size_t(17)}) {
+        std::vector<Ray> few(rays.begin() + 1, rays.begin() + 1 + count);
+        expectAllKernelsMatchReference(accel, few, "few rays");
+    }
+}
+
+} // namespace
+} // namespace wideray
