@@ -30,12 +30,12 @@ struct Traced {
     std::vector<uint8_t> occluded;
 };
 
-Traced trace(const Tracer& tracer, const std::vector<Ray>& rays) {
+Traced trace(const Tracer& tracer, const std::vector<Ray>& rays, Coherence coherence = Coherence::Incoherent) {
     Traced out{std::vector<Hit>(rays.size()), std::vector<uint8_t>(rays.size())};
     tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
         std::span<const Ray> batch(rays.data() + r.begin(), r.size());
-        tracer.intersect(batch, std::span(out.hits.data() + r.begin(), r.size()), Coherence::Incoherent);
-        tracer.occluded(batch, std::span(out.occluded.data() + r.begin(), r.size()), Coherence::Incoherent);
+        tracer.intersect(batch, std::span(out.hits.data() + r.begin(), r.size()), coherence);
+        tracer.occluded(batch, std::span(out.occluded.data() + r.begin(), r.size()), coherence);
     });
     return out;
 }
@@ -46,34 +46,48 @@ bool atEdge(const Hit& h) {
     return h.valid() && h.geomId == 0 && std::min({h.u, h.v, 1.0f - h.u - h.v}) <= eps;
 }
 
+/// |cos| of the angle between the ray and the triangle's plane normal; t is ill-conditioned near 0.
+float incidence(const TriangleMesh& world, const Ray& ray, uint32_t primId) {
+    const glm::uvec3& tri = world.triangles[primId];
+    glm::vec3 n = glm::cross(world.positions[tri.y] - world.positions[tri.x], world.positions[tri.z] - world.positions[tri.x]);
+    glm::vec3 d(ray.dx, ray.dy, ray.dz);
+    return std::abs(glm::dot(n, d)) / (glm::length(n) * glm::length(d));
+}
+
 struct Differences {
-    size_t otherPrimitive = 0;  ///< a different (geomId, primId) or a hit on one side only
-    size_t equalT = 0;          ///< ... of which both hit within 1e-4 R of each other
-    size_t edgeSlip = 0;        ///< ... of which, otherwise, one side hit at an edge or vertex
-    size_t unexplained = 0;
-    size_t samePrimitiveFarT = 0;  ///< same primitive, but t further apart than 1e-4 R
-    size_t occlusion = 0;
     size_t hits = 0;
+    size_t otherPrimitive = 0;   ///< a different (geomId, primId), or a hit on one side only; of these:
+    size_t sharedEdge = 0;       ///<   both hit within 1e-4 R, one at an edge or vertex of its triangle
+    size_t overlap = 0;          ///<   both hit within 1e-4 R inside their triangles: coplanar overlap
+    size_t edgeSlip = 0;         ///<   t apart, one side hit at an edge or vertex the other slipped through
+    size_t unexplained = 0;
+    size_t grazing = 0;          ///< same primitive, t apart by more than 1e-4 R at grazing incidence
+    size_t samePrimitiveFarT = 0;  ///< same primitive, t apart by more than 1e-4 R otherwise
+    size_t occlusion = 0;
 };
 
-Differences compare(const Traced& ours, const Traced& embree, float radius) {
+Differences compare(const TriangleMesh& world, const std::vector<Ray>& rays, const Traced& ours,
+                    const Traced& embree) {
     Differences d;
-    const float tieDistance = 1e-4f * radius;
-    for (size_t i = 0; i < ours.hits.size(); ++i) {
+    const float tieDistance = 1e-4f * 0.5f * glm::length(testing::meshBounds(world).extent());
+    for (size_t i = 0; i < rays.size(); ++i) {
         const Hit &a = ours.hits[i], &b = embree.hits[i];
         d.hits += a.valid();
         d.occlusion += ours.occluded[i] != embree.occluded[i];
+        bool closeT = a.valid() && b.valid() && std::abs(a.t - b.t) <= tieDistance;
         if (a.primId == b.primId && a.geomId == b.geomId) {
-            if (a.valid() && !(std::abs(a.t - b.t) <= tieDistance) && ++d.samePrimitiveFarT <= 5)
-                ADD_FAILURE() << "ray " << i << ": prim " << a.primId << " ours t " << a.t << " (u " << a.u << ", v " << a.v
-                              << "), embree t " << b.t << " (u " << b.u << ", v " << b.v << ")";
+            if (!a.valid() || closeT) continue;
+            if (a.geomId == 0 && incidence(world, rays[i], a.primId) < 1e-2f)
+                ++d.grazing;
+            else if (++d.samePrimitiveFarT <= 5)
+                ADD_FAILURE() << "ray " << i << ": prim " << a.primId << " ours t " << a.t << ", embree t " << b.t;
             continue;
         }
         ++d.otherPrimitive;
-        if (a.valid() && b.valid() && std::abs(a.t - b.t) <= tieDistance) {
-            ++d.equalT;
-            if (d.equalT < 4) std::printf("tie ray %zu: ours %u t %.9g (%g %g) embree %u t %.9g (%g %g)\n", i, a.primId, a.t, a.u, a.v, b.primId, b.t, b.u, b.v);
-        }
+        if (closeT && (atEdge(a) || atEdge(b)))
+            ++d.sharedEdge;
+        else if (closeT)
+            ++d.overlap;
         else if (atEdge(a) || atEdge(b))
             ++d.edgeSlip;
         else if (++d.unexplained <= 5)
@@ -82,8 +96,6 @@ Differences compare(const Traced& ours, const Traced& embree, float radius) {
     }
     return d;
 }
-
-float halfDiagonal(const TriangleMesh& mesh) { return 0.5f * glm::length(testing::meshBounds(mesh).extent()); }
 
 std::unique_ptr<Tracer> referenceTracer(const Scene& scene, const TriangleMesh& world) {
     TracerConfig config;
@@ -103,17 +115,23 @@ void expectEmbreeAgrees(const std::string& name, const Scene& scene, const Trian
             continue;
         }
         EmbreeTracer embree(scene, world, {RTC_BUILD_QUALITY_MEDIUM, kernel, kernel});
-        Differences d = compare(ours, trace(embree, rays), halfDiagonal(world));
-        std::printf("  %-28s %-15s %zu rays, %zu hits: %zu other primitive (%zu equal t, %zu edge slips, "
-                    "%zu unexplained), %zu occlusion differs\n",
-                    name.c_str(), embreeKernelName(kernel), rays.size(), d.hits, d.otherPrimitive, d.equalT,
-                    d.edgeSlip, d.unexplained, d.occlusion);
+        // Packets also run with Embree's coherent-ray hint, the way the renderer calls them.
+        bool packet = kernel != EmbreeKernel::Intersect1 && kernel != EmbreeKernel::Stream1M;
+        Differences d = compare(world, rays, ours, trace(embree, rays, packet ? Coherence::Coherent : Coherence::Incoherent));
+        std::printf("  %-26s %-14s %zu rays, %zu hits: %zu other primitive (%zu shared edge, %zu coplanar "
+                    "overlap, %zu edge slip, %zu unexplained), %zu grazing t, %zu occlusion differs; build %.1f ms, "
+                    "%.2f MB\n",
+                    name.c_str(), embreeKernelName(kernel), rays.size(), d.hits, d.otherPrimitive, d.sharedEdge,
+                    d.overlap, d.edgeSlip, d.unexplained, d.grazing, d.occlusion, embree.buildSeconds() * 1e3,
+                    double(embree.bytes()) / (1 << 20));
         std::fflush(stdout);
         SCOPED_TRACE(name + " " + embreeKernelName(kernel));
         EXPECT_EQ(d.unexplained, 0u);
-        EXPECT_LE(d.otherPrimitive, budget);
-        EXPECT_LE(d.occlusion, budget);
         EXPECT_EQ(d.samePrimitiveFarT, 0u);
+        // Coplanar overlaps have no right answer that Embree could know (each engine's rounding picks
+        // one), so they are counted but left out of the 99.99% budget.
+        EXPECT_LE(d.otherPrimitive - d.overlap + d.grazing, budget);
+        EXPECT_LE(d.occlusion, budget);
         EXPECT_GT(d.hits, rays.size() / 3) << "the ray set should mostly hit";
     }
 }

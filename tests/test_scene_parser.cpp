@@ -375,11 +375,6 @@ TEST(SceneParserErrors, UnknownMaterialType) {
     expectError(sceneWith(R"("materials": {"m": {"type": "glossy"}})"), "materials.m.type", "unknown material type \"glossy\"");
 }
 
-TEST(SceneParserErrors, ReservedMaterialType) {
-    expectError(sceneWith(R"("materials": {"m": {"type": "dielectric", "ior": 1.5}})"), "materials.m.type",
-                "\"dielectric\" is reserved for later");
-}
-
 TEST(SceneParserErrors, UnknownShape) {
     expectError(sceneOfObjects(R"([{"type": "generated", "shape": "torsu"}])"), "objects[0].shape", "did you mean \"torus\"?");
 }

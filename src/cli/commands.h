@@ -20,6 +20,7 @@ void addEngineOptions(CLI::App& app, EngineOptions& options);
 
 void addRenderCommand(CLI::App& app, int& exitCode);
 void addInfoCommand(CLI::App& app, int& exitCode);
+void addBenchCommand(CLI::App& app, int& exitCode);
 
 /// Parses "WxH" (e.g. 1024x768); throws CLI::ValidationError.
 std::pair<int, int> parseSize(const std::string& text);

@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
     int exitCode = 0;
     wideray::cli::addRenderCommand(app, exitCode);
     wideray::cli::addInfoCommand(app, exitCode);
+    wideray::cli::addBenchCommand(app, exitCode);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -65,7 +65,7 @@ private:
         for (int i = 0; i < N; ++i) {
             node.lowerX[i] = node.lowerY[i] = node.lowerZ[i] = inf;
             node.upperX[i] = node.upperY[i] = node.upperZ[i] = -inf;
-            node.child[i] = NodeRef();
+            node.child[i] = NodeRef::empty();
         }
         uint32_t pending[N];
         int pendingCount = 0;

@@ -13,7 +13,7 @@ class Geometry;
 template <int N>
 struct TriangleBvhView {
     const WideNode<N>* nodes = nullptr;
-    NodeRef root;
+    NodeRef root = NodeRef::empty();
     const TriangleBlock<kBlockSize>* blocks = nullptr;
 };
 
@@ -26,7 +26,7 @@ struct PrimRef {
 template <int N>
 struct UserBvhView {
     const WideNode<N>* nodes = nullptr;
-    NodeRef root;
+    NodeRef root = NodeRef::empty();
     const PrimRef* prims = nullptr;
     const Geometry* const* geometries = nullptr;  ///< indexed by geomId
 };

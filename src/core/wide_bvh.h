@@ -19,8 +19,10 @@ struct NodeRef {
     static constexpr uint32_t kMaxLeafItems = 15;
     static constexpr uint32_t kFirstMask = (1u << kCountShift) - 1;
 
-    uint32_t bits = kLeafFlag;  ///< an empty leaf: what unused child slots hold
+    uint32_t bits;  ///< left uninitialized by default: traversal stacks hold hundreds of these
 
+    /// An empty leaf: what unused child slots hold.
+    static NodeRef empty() { return {kLeafFlag}; }
     static NodeRef inner(uint32_t index) { return {index}; }
     static NodeRef leaf(uint32_t first, uint32_t count) { return {kLeafFlag | (count << kCountShift) | first}; }
 
@@ -47,7 +49,7 @@ static_assert(sizeof(WideNode<8>) == 256);
 template <int N>
 struct WideBvh {
     std::vector<WideNode<N>> nodes;
-    NodeRef root;          ///< a leaf when the whole scene fits in one
+    NodeRef root = NodeRef::empty();  ///< a leaf when the whole scene fits in one
     Bounds3f bounds;       ///< of the whole tree
 };
 

@@ -205,12 +205,6 @@ const char* embreeKernelName(EmbreeKernel kernel) {
     return "?";
 }
 
-std::optional<EmbreeKernel> parseEmbreeKernel(std::string_view name) {
-    for (const auto& [k, n] : kKernelNames)
-        if (name == n) return k;
-    return std::nullopt;
-}
-
 bool EmbreeTracer::supports(EmbreeKernel kernel) {
     auto property = [](RTCDeviceProperty p) { return rtcGetDeviceProperty(queryDevice(), p) != 0; };
     switch (kernel) {
@@ -230,8 +224,8 @@ EmbreeTracer::EmbreeTracer(const Scene& scene, const TriangleMesh& world, const 
       quality_(config.quality) {
     for (EmbreeKernel k : {coherent_, incoherent_})
         if (!supports(k))
-            throw InputError("--embree-kernel", "", std::string("this CPU or Embree build cannot run ") +
-                                                        embreeKernelName(k) + " natively");
+            throw InputError("embree", "", std::string("this CPU or Embree build cannot run ") + embreeKernelName(k) +
+                                                 " natively");
     device_.reset(rtcNewDevice(nullptr));
     if (!device_) throw std::runtime_error("Embree: cannot create a device");
     // Errors are recorded here and turned into exceptions by check(): throwing from inside Embree's

@@ -16,7 +16,6 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -31,7 +30,6 @@ enum class EmbreeKernel { Intersect1, Packet4, Packet8, Packet16, Stream1M };
 
 /// The entry point's name, e.g. "rtcIntersect16" ("rtcOccluded16" for the same kernel's shadow rays).
 const char* embreeKernelName(EmbreeKernel kernel);
-std::optional<EmbreeKernel> parseEmbreeKernel(std::string_view name);
 
 struct EmbreeConfig {
     RTCBuildQuality quality = RTC_BUILD_QUALITY_MEDIUM;  ///< Embree's default and its advice for most uses

@@ -18,7 +18,41 @@ struct PacketRay {
     vfloat<K> ox, oy, oz, rdx, rdy, rdz, tnear;
     vbool<K> negX, negY, negZ;
     WatertightRay<vfloat<K>, vint<K>> woop;
+    // Coherent packets usually share the direction octant and the dominant axes; then planes and
+    // vertex coordinates are picked once per packet instead of per lane (same arithmetic).
+    bool uniformOctant = false, uniformAxes = false;
+    bool negXs = false, negYs = false, negZs = false;
+    int kx = 0, ky = 0, kz = 0;
+    vfloat<K> okx, oky, okz;  ///< the origin permuted to (kx, ky, kz), when uniformAxes
 };
+
+/// Finds out whether the active lanes share the direction octant (see PacketRay).
+template <int K>
+inline void classifyOctant(PacketRay<K>& p, uint32_t lanes) {
+    uint32_t nx = movemask(p.negX) & lanes, ny = movemask(p.negY) & lanes, nz = movemask(p.negZ) & lanes;
+    p.uniformOctant = (nx == 0 || nx == lanes) && (ny == 0 || ny == lanes) && (nz == 0 || nz == lanes);
+    p.negXs = nx != 0; p.negYs = ny != 0; p.negZs = nz != 0;
+}
+
+/// Finds out whether the active lanes share the watertight test's axes (see PacketRay).
+template <int K>
+inline void classifyAxes(PacketRay<K>& p, uint32_t lanes) {
+    p.uniformAxes = false;
+    if (!lanes) return;
+    alignas(64) int32_t kx[K], ky[K], kz[K];
+    p.woop.kx.store(kx); p.woop.ky.store(ky); p.woop.kz.store(kz);
+    int first = __builtin_ctz(lanes);
+    p.kx = kx[first]; p.ky = ky[first]; p.kz = kz[first];
+    p.uniformAxes = true;
+    for (uint32_t l = lanes; l; l &= l - 1) {
+        int i = __builtin_ctz(l);
+        p.uniformAxes = p.uniformAxes && kx[i] == p.kx && ky[i] == p.ky && kz[i] == p.kz;
+    }
+    if (p.uniformAxes) {
+        const vfloat<K>* o[3] = {&p.ox, &p.oy, &p.oz};
+        p.okx = *o[p.kx]; p.oky = *o[p.ky]; p.okz = *o[p.kz];
+    }
+}
 
 /// Hits in SIMD registers; primId is INT32_MAX for "none yet" so that the tie rule is one compare.
 template <int K>
@@ -51,7 +85,10 @@ inline vbool<K> loadPacket(const Ray* rays, int count, PacketRay<K>& p, PacketHi
     h.t = F::load(tf);
     h.u = h.v = F(0.0f);
     h.primId = vint<K>(kNoPrim);
-    return p.tnear <= h.t;
+    vbool<K> valid = p.tnear <= h.t;
+    classifyOctant(p, movemask(valid));
+    classifyAxes(p, movemask(valid));
+    return valid;
 }
 
 /// Entry distances of the packet into child i of a node; +inf for rays that miss or are inactive.
@@ -59,11 +96,21 @@ template <int N, int K>
 inline vfloat<K> packetChildEntry(const WideNode<N>& node, int i, const PacketRay<K>& p, const vfloat<K>& tfar,
                                   const vbool<K>& active) {
     using F = vfloat<K>;
-    F lx(node.lowerX[i]), ux(node.upperX[i]), ly(node.lowerY[i]), uy(node.upperY[i]), lz(node.lowerZ[i]),
-        uz(node.upperZ[i]);
-    F tx0 = (select(p.negX, ux, lx) - p.ox) * p.rdx, tx1 = (select(p.negX, lx, ux) - p.ox) * p.rdx;
-    F ty0 = (select(p.negY, uy, ly) - p.oy) * p.rdy, ty1 = (select(p.negY, ly, uy) - p.oy) * p.rdy;
-    F tz0 = (select(p.negZ, uz, lz) - p.oz) * p.rdz, tz1 = (select(p.negZ, lz, uz) - p.oz) * p.rdz;
+    F nearX, farX, nearY, farY, nearZ, farZ;
+    if (p.uniformOctant) {
+        nearX = F(p.negXs ? node.upperX[i] : node.lowerX[i]); farX = F(p.negXs ? node.lowerX[i] : node.upperX[i]);
+        nearY = F(p.negYs ? node.upperY[i] : node.lowerY[i]); farY = F(p.negYs ? node.lowerY[i] : node.upperY[i]);
+        nearZ = F(p.negZs ? node.upperZ[i] : node.lowerZ[i]); farZ = F(p.negZs ? node.lowerZ[i] : node.upperZ[i]);
+    } else {
+        F lx(node.lowerX[i]), ux(node.upperX[i]), ly(node.lowerY[i]), uy(node.upperY[i]), lz(node.lowerZ[i]),
+            uz(node.upperZ[i]);
+        nearX = select(p.negX, ux, lx); farX = select(p.negX, lx, ux);
+        nearY = select(p.negY, uy, ly); farY = select(p.negY, ly, uy);
+        nearZ = select(p.negZ, uz, lz); farZ = select(p.negZ, lz, uz);
+    }
+    F tx0 = (nearX - p.ox) * p.rdx, tx1 = (farX - p.ox) * p.rdx;
+    F ty0 = (nearY - p.oy) * p.rdy, ty1 = (farY - p.oy) * p.rdy;
+    F tz0 = (nearZ - p.oz) * p.rdz, tz1 = (farZ - p.oz) * p.rdz;
     F tEntry = max(tx0, max(ty0, max(tz0, p.tnear)));
     F tExit = min(tx1, min(ty1, min(tz1, tfar))) * F(kRobustFarScale);
     return select(active & (tEntry <= tExit), tEntry, F(__builtin_huge_valf()));
@@ -78,9 +125,20 @@ inline vbool<K> intersectBlockPacket(const TriangleBlock<kBlockSize>& block, con
     vbool<K> anyHit(false);
     for (int j = 0; j < kBlockSize && block.primId[j] != kInvalidId; ++j) {
         F t = h.t, u = h.u, v = h.v;
-        vbool<K> hit = intersectWatertight(p.woop, active, F(block.v0x[j]), F(block.v0y[j]), F(block.v0z[j]),
-                                           F(block.v1x[j]), F(block.v1y[j]), F(block.v1z[j]), F(block.v2x[j]),
-                                           F(block.v2y[j]), F(block.v2z[j]), p.tnear, h.t, t, u, v);
+        vbool<K> hit;
+        if (p.uniformAxes) {
+            const float v0[3] = {block.v0x[j], block.v0y[j], block.v0z[j]};
+            const float v1[3] = {block.v1x[j], block.v1y[j], block.v1z[j]};
+            const float v2[3] = {block.v2x[j], block.v2y[j], block.v2z[j]};
+            hit = intersectWatertightPermuted(p.woop.sx, p.woop.sy, p.woop.sz, active, F(v0[p.kx]) - p.okx,
+                                              F(v0[p.ky]) - p.oky, F(v0[p.kz]) - p.okz, F(v1[p.kx]) - p.okx,
+                                              F(v1[p.ky]) - p.oky, F(v1[p.kz]) - p.okz, F(v2[p.kx]) - p.okx,
+                                              F(v2[p.ky]) - p.oky, F(v2[p.kz]) - p.okz, p.tnear, h.t, t, u, v);
+        } else {
+            hit = intersectWatertight(p.woop, active, F(block.v0x[j]), F(block.v0y[j]), F(block.v0z[j]),
+                                      F(block.v1x[j]), F(block.v1y[j]), F(block.v1z[j]), F(block.v2x[j]),
+                                      F(block.v2y[j]), F(block.v2z[j]), p.tnear, h.t, t, u, v);
+        }
         if (none(hit)) continue;
         if constexpr (AnyHit) {
             anyHit |= hit;
@@ -173,28 +231,27 @@ inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, H
             NodeRef ref = e.ref;
             while (!ref.isLeaf()) {
                 const WideNode<N>& node = tri.nodes[ref.index()];
-                Entry hitChildren[N];
+                // Insert the hit children into the stack sorted by their nearest ray's entry,
+                // farthest first, then continue with the nearest.
                 float order[N];
-                int n = 0;
+                const int base = sp;
                 for (int i = 0; i < N; ++i) {
-                    if (node.child[i].bits == NodeRef().bits) continue;
+                    if (node.child[i].bits == NodeRef::empty().bits) continue;
                     F dist = packetChildEntry<N, K>(node, i, p, h.t, active);
-                    vbool<K> hit = dist < inf;
-                    if (none(hit)) continue;
-                    // Insert sorted by the nearest ray's entry, farthest first.
+                    if (none(dist < inf)) continue;
                     float key = reduceMin(dist);
-                    int j = n++;
-                    for (; j > 0 && order[j - 1] < key; --j) {
-                        hitChildren[j] = hitChildren[j - 1];
-                        order[j] = order[j - 1];
+                    int j = sp++;
+                    for (; j > base && order[j - 1 - base] < key; --j) {
+                        stack[j] = stack[j - 1];
+                        order[j - base] = order[j - 1 - base];
                     }
-                    hitChildren[j] = {dist, node.child[i]};
-                    order[j] = key;
+                    stack[j] = {dist, node.child[i]};
+                    order[j - base] = key;
                 }
-                if (n == 0) goto pop;
-                for (int i = 0; i < n - 1; ++i) stack[sp++] = hitChildren[i];
-                ref = hitChildren[n - 1].ref;
-                active = hitChildren[n - 1].dist < inf;
+                if (sp == base) goto pop;
+                --sp;
+                ref = stack[sp].ref;
+                active = stack[sp].dist < inf;
             }
             for (uint32_t b = ref.first(); b < ref.first() + ref.count(); ++b) {
                 vbool<K> hit = intersectBlockPacket<K, AnyHit>(tri.blocks[b], p, active, h);

@@ -50,16 +50,21 @@ inline bool intersectBlock(const TriangleBlock<kBlockSize>& block, const SingleR
         return false;
     } else {
         static_assert(TriW == kBlockSize);
+        // One ray: its axes are scalars, so the block's coordinate arrays are picked by pointer.
         using F = vfloat<TriW>;
         using I = vint<TriW>;
-        WatertightRay<F, I> r{F(s.woop.ox), F(s.woop.oy), F(s.woop.oz), I(s.woop.kx), I(s.woop.ky),
-                              I(s.woop.kz), F(s.woop.sx), F(s.woop.sy), F(s.woop.sz)};
+        const WatertightRay<float, int32_t>& w = s.woop;
+        const float* v0[3] = {block.v0x, block.v0y, block.v0z};
+        const float* v1[3] = {block.v1x, block.v1y, block.v1z};
+        const float* v2[3] = {block.v2x, block.v2y, block.v2z};
+        const float o[3] = {w.ox, w.oy, w.oz};
+        const F ox(o[w.kx]), oy(o[w.ky]), oz(o[w.kz]);
         auto valid = I::loadu(block.primId) != I(int32_t(kInvalidId));
         F t(0.0f), u(0.0f), v(0.0f);
-        auto h = intersectWatertight(r, valid, F::load(block.v0x), F::load(block.v0y), F::load(block.v0z),
-                                     F::load(block.v1x), F::load(block.v1y), F::load(block.v1z),
-                                     F::load(block.v2x), F::load(block.v2y), F::load(block.v2z), F(ray.tnear),
-                                     F(hit.t), t, u, v);
+        auto h = intersectWatertightPermuted(
+            F(w.sx), F(w.sy), F(w.sz), valid, F::load(v0[w.kx]) - ox, F::load(v0[w.ky]) - oy, F::load(v0[w.kz]) - oz,
+            F::load(v1[w.kx]) - ox, F::load(v1[w.ky]) - oy, F::load(v1[w.kz]) - oz, F::load(v2[w.kx]) - ox,
+            F::load(v2[w.ky]) - oy, F::load(v2[w.kz]) - oz, F(ray.tnear), F(hit.t), t, u, v);
         uint32_t lanes = movemask(h);
         if (!lanes) return false;
         if constexpr (AnyHit) return true;
@@ -99,18 +104,16 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
                 ref = node.child[__builtin_ctz(mask)];
                 continue;
             }
-            // Push the hit children farthest first, then continue with the nearest.
-            Entry hitChildren[N];
-            int n = 0;
+            // Insert the hit children into the stack sorted farthest first, then take the nearest.
+            const int base = sp;
             for (; mask; mask &= mask - 1) {
                 int i = __builtin_ctz(mask);
                 Entry c{node.child[i], tEntry[i]};
-                int j = n++;
-                for (; j > 0 && hitChildren[j - 1].tEntry < c.tEntry; --j) hitChildren[j] = hitChildren[j - 1];
-                hitChildren[j] = c;
+                int j = sp++;
+                for (; j > base && stack[j - 1].tEntry < c.tEntry; --j) stack[j] = stack[j - 1];
+                stack[j] = c;
             }
-            for (int i = 0; i < n - 1; ++i) stack[sp++] = hitChildren[i];
-            ref = hitChildren[n - 1].ref;
+            ref = stack[--sp].ref;
         }
         if (leaf(ref.first(), ref.count())) return;
     pop:;

@@ -96,15 +96,12 @@ inline void scatterHits(StreamWorkspace& ws, const vint<K>& idx, const PacketHit
     }
 }
 
-/// Loads K indices of a list starting at `at` (of `count` left); the tail repeats its last index.
+/// Loads K indices of a list that has `count` left; lanes past its end are not valid.
 template <int K>
 inline vint<K> loadIndices(const int32_t* list, size_t count, vbool<K>& valid) {
-    alignas(64) int32_t idx[K];
-    for (int l = 0; l < K; ++l) idx[l] = list[size_t(l) < count ? size_t(l) : count - 1];
-    alignas(64) int32_t lane[K];
-    for (int l = 0; l < K; ++l) lane[l] = l;
-    valid = vint<K>::load(lane) < vint<K>(int32_t(count < size_t(K) ? count : size_t(K)));
-    return vint<K>::load(idx);
+    alignas(64) static constexpr int32_t kLane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    valid = vint<K>::load(kLane) < vint<K>(int32_t(count < size_t(K) ? count : size_t(K)));
+    return select(valid, vint<K>::loadu(list), vint<K>(list[0]));
 }
 
 template <int N, int K, bool AnyHit>
@@ -117,7 +114,7 @@ inline void traceStreamTriangles(const TriangleBvhView<N>& tri, size_t n, Stream
     };
     Entry stack[kStackSize<N>];
     int sp = 0;
-    ws.reserveArena(n * (N + 1));
+    ws.reserveArena(n + K);
     for (size_t i = 0; i < n; ++i) ws.arena[i] = int32_t(i);
     stack[sp++] = {tri.root, 0, uint32_t(n), uint32_t(n)};
     while (sp > 0) {
@@ -133,6 +130,7 @@ inline void traceStreamTriangles(const TriangleBvhView<N>& tri, size_t n, Stream
                 gatherWoop(ws, idx, p, h);
                 vbool<K> active = valid & (p.tnear <= h.t);
                 if (none(active)) continue;
+                classifyAxes(p, movemask(active));
                 for (uint32_t b = e.ref.first(); b < e.ref.first() + e.ref.count(); ++b) {
                     vbool<K> hit = intersectBlockPacket<K, AnyHit>(tri.blocks[b], p, active, h);
                     if constexpr (AnyHit) {
@@ -144,40 +142,54 @@ inline void traceStreamTriangles(const TriangleBvhView<N>& tri, size_t n, Stream
             }
             continue;
         }
+        // Filter the list against all children at once: each child gets a region of the arena as
+        // large as the list (plus K of slack for the vector loads of the next level).
         const WideNode<N>& node = tri.nodes[e.ref.index()];
-        const size_t count = e.end - e.begin;
-        ws.reserveArena(top + N * count);
+        const uint32_t count = e.end - e.begin, region = count + K;
+        int live[N], liveCount = 0;
+        for (int i = 0; i < N; ++i)
+            if (node.child[i].bits != NodeRef::empty().bits) live[liveCount++] = i;
+        ws.reserveArena(top + liveCount * region + K);
+        uint32_t childEnd[N];
+        F closest[N];
+        for (int c = 0; c < liveCount; ++c) {
+            childEnd[c] = top + c * region;
+            closest[c] = inf;
+        }
+        for (uint32_t at = e.begin; at < e.end; at += K) {
+            vbool<K> valid;
+            vint<K> idx = loadIndices<K>(&ws.arena[at], e.end - at, valid);
+            PacketRay<K> p;
+            PacketHit<K> h;
+            gatherPacket(ws, idx, p, h);
+            vbool<K> active = valid & (p.tnear <= h.t);
+            classifyOctant(p, movemask(active));
+            for (int c = 0; c < liveCount; ++c) {
+                F dist = packetChildEntry<N, K>(node, live[c], p, h.t, active);
+                closest[c] = min(closest[c], dist);
+                childEnd[c] += uint32_t(compressStore(&ws.arena[childEnd[c]], idx, dist < inf));
+            }
+        }
+        // Sorted insert: farthest first, so that the nearest child is popped first.
         Entry children[N];
         float nearest[N];
         int childCount = 0;
-        for (int i = 0; i < N; ++i) {
-            if (node.child[i].bits == NodeRef().bits) continue;
-            uint32_t begin = top;
-            F closest = inf;
-            for (uint32_t at = e.begin; at < e.end; at += K) {
-                vbool<K> valid;
-                vint<K> idx = loadIndices<K>(&ws.arena[at], e.end - at, valid);
-                PacketRay<K> p;
-                PacketHit<K> h;
-                gatherPacket(ws, idx, p, h);
-                F dist = packetChildEntry<N, K>(node, i, p, h.t, valid & (p.tnear <= h.t));
-                closest = min(closest, dist);
-                top += uint32_t(compressStore(&ws.arena[top], idx, dist < inf));
-            }
-            if (top == begin) continue;
-            // Sorted insert: farthest first, so the nearest child is popped first.
-            float key = reduceMin(closest);
+        for (int c = 0; c < liveCount; ++c) {
+            uint32_t begin = top + c * region;
+            if (childEnd[c] == begin) continue;
+            float key = reduceMin(closest[c]);
             int j = childCount++;
             for (; j > 0 && nearest[j - 1] < key; --j) {
                 children[j] = children[j - 1];
                 nearest[j] = nearest[j - 1];
             }
-            children[j] = {node.child[i], begin, top, 0};
+            children[j] = {node.child[live[c]], begin, childEnd[c], 0};
             nearest[j] = key;
         }
-        for (int i = 0; i < childCount; ++i) {
-            children[i].restoreTop = top;
-            stack[sp++] = children[i];
+        const uint32_t newTop = top + liveCount * region;
+        for (int c = 0; c < childCount; ++c) {
+            children[c].restoreTop = newTop;
+            stack[sp++] = children[c];
         }
     }
 }

@@ -84,22 +84,19 @@ inline void recomputeZeroEdges(F& U, F& V, F& W, const F& Ax, const F& Ay, const
 
 } // namespace detail
 
-/// Returns the lanes where the ray hits the triangle (v0, v1, v2) with tnear <= t <= tfar; t, u and
-/// v are written for those lanes (u, v weight v1 and v2). Both faces are hit.
-template <class F, class I, class B>
-inline B intersectWatertight(const WatertightRay<F, I>& r, B valid, const F& v0x, const F& v0y, const F& v0z,
-                             const F& v1x, const F& v1y, const F& v1z, const F& v2x, const F& v2y,
-                             const F& v2z, const F& tnear, const F& tfar, F& t, F& u, F& v) {
-    F ax = v0x - r.ox, ay = v0y - r.oy, az = v0z - r.oz;
-    F bx = v1x - r.ox, by = v1y - r.oy, bz = v1z - r.oz;
-    F cx = v2x - r.ox, cy = v2y - r.oy, cz = v2z - r.oz;
-    F Akz = permute(ax, ay, az, r.kz), Bkz = permute(bx, by, bz, r.kz), Ckz = permute(cx, cy, cz, r.kz);
-    F Ax = permute(ax, ay, az, r.kx) - r.sx * Akz;
-    F Ay = permute(ax, ay, az, r.ky) - r.sy * Akz;
-    F Bx = permute(bx, by, bz, r.kx) - r.sx * Bkz;
-    F By = permute(bx, by, bz, r.ky) - r.sy * Bkz;
-    F Cx = permute(cx, cy, cz, r.kx) - r.sx * Ckz;
-    F Cy = permute(cx, cy, cz, r.ky) - r.sy * Ckz;
+/// The test proper, on vertex coordinates relative to the ray origin and already permuted to the
+/// ray's (kx, ky, kz) axes: a = v0 - o, b = v1 - o, c = v2 - o. Returns the lanes where the ray hits
+/// with tnear <= t <= tfar, writing t, u and v there (u, v weight v1 and v2). Both faces are hit.
+template <class F, class B>
+inline B intersectWatertightPermuted(const F& sx, const F& sy, const F& sz, B valid, const F& akx, const F& aky,
+                                     const F& akz, const F& bkx, const F& bky, const F& bkz, const F& ckx,
+                                     const F& cky, const F& ckz, const F& tnear, const F& tfar, F& t, F& u, F& v) {
+    F Ax = akx - sx * akz;
+    F Ay = aky - sy * akz;
+    F Bx = bkx - sx * bkz;
+    F By = bky - sy * bkz;
+    F Cx = ckx - sx * ckz;
+    F Cy = cky - sy * ckz;
 
     F U = Cx * By - Cy * Bx;
     F V = Ax * Cy - Ay * Cx;
@@ -115,7 +112,7 @@ inline B intersectWatertight(const WatertightRay<F, I>& r, B valid, const F& v0x
     valid = andNot(valid, det == zero);
     if (none(valid)) return valid;
 
-    F T = U * (r.sz * Akz) + V * (r.sz * Bkz) + W * (r.sz * Ckz);
+    F T = U * (sz * akz) + V * (sz * bkz) + W * (sz * ckz);
     F rcpDet = F(1.0f) / det;
     F tHit = T * rcpDet;
     valid = valid & (tHit >= tnear) & (tHit <= tfar);
@@ -123,6 +120,20 @@ inline B intersectWatertight(const WatertightRay<F, I>& r, B valid, const F& v0x
     u = select(valid, V * rcpDet, u);
     v = select(valid, W * rcpDet, v);
     return valid;
+}
+
+/// The test for a ray (or rays, lane by lane) whose axes may differ per lane.
+template <class F, class I, class B>
+inline B intersectWatertight(const WatertightRay<F, I>& r, B valid, const F& v0x, const F& v0y, const F& v0z,
+                             const F& v1x, const F& v1y, const F& v1z, const F& v2x, const F& v2y,
+                             const F& v2z, const F& tnear, const F& tfar, F& t, F& u, F& v) {
+    F ax = v0x - r.ox, ay = v0y - r.oy, az = v0z - r.oz;
+    F bx = v1x - r.ox, by = v1y - r.oy, bz = v1z - r.oz;
+    F cx = v2x - r.ox, cy = v2y - r.oy, cz = v2z - r.oz;
+    return intersectWatertightPermuted(r.sx, r.sy, r.sz, valid, permute(ax, ay, az, r.kx), permute(ax, ay, az, r.ky),
+                                       permute(ax, ay, az, r.kz), permute(bx, by, bz, r.kx), permute(bx, by, bz, r.ky),
+                                       permute(bx, by, bz, r.kz), permute(cx, cy, cz, r.kx), permute(cx, cy, cz, r.ky),
+                                       permute(cx, cy, cz, r.kz), tnear, tfar, t, u, v);
 }
 
 } // namespace WIDERAY_ISA

@@ -5,12 +5,13 @@
 
 namespace wideray {
 
-/// Improved Perlin noise at `p`: smooth, zero at every integer lattice point, within [-1, 1]
-/// (kPerlinNoiseBound), and the same on every machine (a fixed permutation table, no random state).
+/// Improved Perlin noise at `p`: smooth, zero at every integer lattice point, within
+/// +-kPerlinNoiseBound, and the same on every machine (a fixed permutation table, no random state).
 float perlinNoise(const glm::vec3& p);
 
-/// An upper bound of |perlinNoise|. The analytic maximum of the 3D gradient noise is below 1.
-inline constexpr float kPerlinNoiseBound = 1.0f;
+/// A bound of |perlinNoise|. The noise is mostly within [-1, 1] but slightly exceeds 1 where the
+/// corner gradients line up: a search of 262144 lattice cells found 1.0288, near (167.36, 55.49, 5.48).
+inline constexpr float kPerlinNoiseBound = 1.04f;
 
 /// Fractional Brownian motion: the sum over `octaves` of noise(f p) / f for f = 1, 2, 4, ...
 float fbm(const glm::vec3& p, int octaves);

@@ -1,0 +1,248 @@
+// wideray bench: the same rays traced in the same process by each of our kernels and by Embree's
+// counterparts, each timed several times after a warm-up; medians in Mrays/s, ratios ours / Embree.
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <thread>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include "cli/commands.h"
+#include "core/bench_rays.h"
+#include "core/error.h"
+#include "core/fp_mode.h"
+#include "core/mesh_framing.h"
+#include "core/scene_accel.h"
+#include "kernels/embree_tracer.h"
+#include "kernels/isa_kernels.h"
+#include "kernels/reference_kernel.h"
+#include "kernels/tracer_factory.h"
+
+namespace wideray::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct BenchArgs {
+    std::vector<std::string> inputs;
+    std::string size = "1024x1024";
+    int threads = 0;
+    int runs = 5;
+    std::string json;
+    std::vector<std::string> kinds{"primary", "shadow", "diffuse"};
+    bool allIsas = false;
+};
+
+/// One way of tracing a batch: closest hits (hits != null) or occlusion.
+using TraceFn = std::function<void(const Ray* rays, size_t count, Hit* hits, uint8_t* occluded, bool coherent)>;
+
+struct Candidate {
+    std::string backend, kernel, isa;
+    std::string counterpart;  ///< the Embree kernel ours is compared with
+    TraceFn trace;
+};
+
+struct Measurement {
+    double mraysPerSecond = 0;
+    size_t hits = 0;
+};
+
+constexpr size_t kChunk = 4096;  // rays per task: sixteen 16x16 tiles
+
+Measurement measure(const Candidate& c, const std::vector<Ray>& rays, bool anyHit, bool coherent, int runs) {
+    std::vector<Hit> hits(anyHit ? 0 : rays.size());
+    std::vector<uint8_t> occluded(anyHit ? rays.size() : 0);
+    auto once = [&] {
+        auto start = Clock::now();
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), kChunk), [&](const tbb::blocked_range<size_t>& r) {
+            c.trace(rays.data() + r.begin(), r.size(), anyHit ? nullptr : hits.data() + r.begin(),
+                    anyHit ? occluded.data() + r.begin() : nullptr, coherent);
+        });
+        return std::chrono::duration<double>(Clock::now() - start).count();
+    };
+    once();  // warm-up: caches, page faults, thread start
+    std::vector<double> seconds;
+    for (int i = 0; i < runs; ++i) seconds.push_back(once());
+    std::sort(seconds.begin(), seconds.end());
+    Measurement m;
+    double median = seconds[seconds.size() / 2];
+    m.mraysPerSecond = median > 0 ? double(rays.size()) / median * 1e-6 : 0.0;
+    m.hits = anyHit ? size_t(std::count(occluded.begin(), occluded.end(), 1))
+                    : size_t(std::count_if(hits.begin(), hits.end(), [](const Hit& h) { return h.valid(); }));
+    return m;
+}
+
+template <int N>
+std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, bool allIsas) {
+    std::vector<Candidate> out;
+    SceneView<N> view = accel.view();
+    out.push_back({"wideray", "scalar", "baseline", "rtcIntersect1",
+                   [view](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
+                       if (h) reference::intersect<N>(view, r, h, n, nullptr);
+                       else reference::occluded<N>(view, r, o, n);
+                   }});
+    for (Isa isa : {Isa::Sse42, Isa::Avx2, Isa::Avx512}) {
+        if (!cpuSupports(isa) || (!allIsas && isa != bestIsa())) continue;
+        IsaKernelTable<N> table = kernelTable<N>(isa);
+        const std::pair<KernelSet<N>, const char*> kernels[] = {{table.single, "rtcIntersect1"},
+                                                                {table.packet4, "rtcIntersect4"},
+                                                                {table.packet8, "rtcIntersect8"},
+                                                                {table.packet16, "rtcIntersect16"},
+                                                                {table.stream, "rtcIntersect1M"}};
+        for (const auto& [k, counterpart] : kernels) {
+            if (!k.intersect) continue;
+            out.push_back({"wideray", k.name, isaName(isa), counterpart, [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
+                               if (h) k.intersect(view, r, h, n, nullptr);
+                               else k.occluded(view, r, o, n);
+                           }});
+        }
+    }
+    return out;
+}
+
+using EmbreeEntry = std::pair<EmbreeKernel, std::shared_ptr<EmbreeTracer>>;
+
+std::vector<Candidate> embreeCandidates(const std::vector<EmbreeEntry>& tracers) {
+    std::vector<Candidate> out;
+    for (const auto& [kernel, tracer] : tracers) {
+        out.push_back({"embree", embreeKernelName(kernel), "embree", "", [tracer = tracer](const Ray* r, size_t n, Hit* h, uint8_t* o, bool coherent) {
+                           Coherence c = coherent ? Coherence::Coherent : Coherence::Incoherent;
+                           if (h) tracer->intersect({r, n}, {h, n}, c);
+                           else tracer->occluded({r, n}, {o, n}, c);
+                       }});
+    }
+    return out;
+}
+
+std::string shortName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& results, nlohmann::json& builds,
+              int threads) {
+    auto [width, height] = parseSize(args.size);
+    Scene scene = loadSceneOrMesh(input, width, height);
+    TriangleMesh world = flattenTriangles(scene);
+    const std::string name = shortName(input);
+    fmt::print(stderr, "{}: {} triangles, building BVHs...\n", name, world.triangles.size());
+
+    auto start = Clock::now();
+    auto accel = std::make_shared<SceneAccel<8>>(world, userGeometries(scene));
+    double ourSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+    builds.push_back({{"scene", name}, {"backend", "wideray"}, {"quality", "sah-binned-bvh8"}, {"seconds", ourSeconds},
+                      {"bytes", accel->bytes()}});
+    for (RTCBuildQuality quality : {RTC_BUILD_QUALITY_MEDIUM, RTC_BUILD_QUALITY_HIGH}) {
+        EmbreeTracer e(scene, world, {quality, EmbreeKernel::Intersect1, EmbreeKernel::Intersect1});
+        builds.push_back({{"scene", name}, {"backend", "embree"},
+                          {"quality", quality == RTC_BUILD_QUALITY_HIGH ? "high" : "medium"},
+                          {"seconds", e.buildSeconds()}, {"bytes", e.bytes()}});
+    }
+    for (const auto& b : builds)
+        if (b["scene"] == name)
+            fmt::print("{}: build {} {}: {:.1f} ms, {:.1f} MB\n", name, std::string(b["backend"]),
+                       std::string(b["quality"]), double(b["seconds"]) * 1e3, double(b["bytes"]) / 1e6);
+
+    // One Embree scene per entry point, all at the default build quality.
+    std::vector<EmbreeEntry> embree;
+    for (EmbreeKernel k : {EmbreeKernel::Intersect1, EmbreeKernel::Packet4, EmbreeKernel::Packet8,
+                           EmbreeKernel::Packet16, EmbreeKernel::Stream1M})
+        if (EmbreeTracer::supports(k))
+            embree.push_back({k, std::make_shared<EmbreeTracer>(scene, world, EmbreeConfig{RTC_BUILD_QUALITY_MEDIUM, k, k})});
+
+    TracerConfig referenceConfig;
+    referenceConfig.kernel = KernelChoice::Scalar;
+    BuiltTracer reference = buildWiderayTracer(scene, world, referenceConfig);
+    BenchRays rays = makeBenchRays(scene, world, *reference.tracer, width, height);
+
+    std::vector<Candidate> candidates = ourCandidates(*accel, args.allIsas);
+    for (Candidate& c : embreeCandidates(embree)) candidates.push_back(std::move(c));
+
+    fmt::print("\n{:<28} {:<8} {:<8} {:<15} {:<8} {:>10} {:>9} {:>10}\n", "scene", "rays", "backend", "kernel", "isa",
+               "Mrays/s", "hits", "vs embree");
+    for (const std::string& kindName : args.kinds) {
+        RayKind kind = kindName == "primary" ? RayKind::Primary : kindName == "shadow" ? RayKind::Shadow : RayKind::Diffuse;
+        const std::vector<Ray>& set = rays.of(kind);
+        if (set.empty()) continue;
+        bool anyHit = kind == RayKind::Shadow, coherent = kind != RayKind::Diffuse;
+        std::map<std::string, double> embreeSpeed;
+        std::vector<std::pair<const Candidate*, Measurement>> measured;
+        for (const Candidate& c : candidates) {
+            fmt::print(stderr, "\r{} {} {} {}...            ", name, kindName, c.kernel, c.isa);
+            Measurement m = measure(c, set, anyHit, coherent, args.runs);
+            if (c.backend == "embree") embreeSpeed[c.kernel] = m.mraysPerSecond;
+            measured.push_back({&c, m});
+        }
+        fmt::print(stderr, "\r{:60}\r", "");
+        for (const auto& [c, m] : measured) {
+            std::string kernel = anyHit && c->backend == "embree" ? std::string(c->kernel).replace(3, 9, "Occluded") : c->kernel;
+            std::string versus;
+            if (auto it = embreeSpeed.find(c->counterpart); it != embreeSpeed.end() && it->second > 0) {
+                std::string counterpart = anyHit ? std::string(c->counterpart).replace(3, 9, "Occluded") : c->counterpart;
+                versus = fmt::format("{:.2f}x {}", m.mraysPerSecond / it->second, counterpart);
+            }
+            fmt::print("{:<28} {:<8} {:<8} {:<15} {:<8} {:>10.2f} {:>9} {}\n", name, kindName, c->backend, kernel,
+                       c->isa, m.mraysPerSecond, m.hits, versus);
+            results.push_back({{"scene", name}, {"triangles", world.triangles.size()}, {"ray_kind", kindName},
+                               {"backend", c->backend}, {"kernel", kernel}, {"isa", c->isa}, {"threads", threads},
+                               {"rays", set.size()}, {"hits", m.hits}, {"mrays_per_s", m.mraysPerSecond},
+                               {"runs", args.runs}});
+        }
+        std::fflush(stdout);
+    }
+}
+
+} // namespace
+
+void addBenchCommand(CLI::App& app, int& exitCode) {
+    auto args = std::make_shared<BenchArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "bench", "Trace the same primary, shadow and diffuse rays with each of our kernels and Embree's, in one "
+                 "process; print Mrays/s (median of several runs) and the ratio ours / Embree");
+    cmd->add_option("inputs", args->inputs, "Scene files (camera and first point light used) or meshes (framed by "
+                                            "the rule in docs/performance.md)")
+        ->required();
+    cmd->add_option("--size", args->size, "Image size WxH of the ray sets")->capture_default_str();
+    cmd->add_option("--threads", args->threads, "Worker threads (default: all hardware threads)")->check(CLI::Range(1, 4096));
+    cmd->add_option("--runs", args->runs, "Timed runs per measurement (after one warm-up); the median is reported")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    cmd->add_option("--rays", args->kinds, "Ray kinds: primary, shadow, diffuse")
+        ->check(CLI::IsMember({"primary", "shadow", "diffuse"}))
+        ->delimiter(',');
+    cmd->add_flag("--all-isas", args->allIsas, "Measure our kernels for every ISA this CPU has, not only the best");
+    cmd->add_option("--json", args->json, "Write the results as JSON (fields: machine, results, builds)");
+    cmd->callback([args, &exitCode] {
+        FlushToZeroScope ftz;
+        int threads = args->threads > 0 ? args->threads : int(std::thread::hardware_concurrency());
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+        nlohmann::json results = nlohmann::json::array(), builds = nlohmann::json::array();
+        for (const std::string& input : args->inputs) {
+            try {
+                benchOne(*args, input, results, builds, threads);
+            } catch (const std::exception& e) {
+                fmt::print(stderr, "error: {}\n", e.what());
+                exitCode = 1;
+            }
+        }
+        if (!args->json.empty()) {
+            nlohmann::json doc = {{"machine",
+                                   {{"cpu", cpuModelName()},
+                                    {"cores", std::thread::hardware_concurrency()},
+                                    {"threads", threads},
+                                    {"isa", isaName(bestIsa())}}},
+                                  {"size", args->size},
+                                  {"results", results},
+                                  {"builds", builds}};
+            std::filesystem::path path(args->json), temp = path;
+            temp += ".tmp";
+            if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+            std::ofstream(temp) << doc.dump(2) << "\n";
+            std::filesystem::rename(temp, path);
+        }
+    });
+}
+
+} // namespace wideray::cli
