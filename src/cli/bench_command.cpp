@@ -93,6 +93,7 @@ std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, bool allIsas) {
                                                                 {table.packet4, "rtcIntersect4"},
                                                                 {table.packet8, "rtcIntersect8"},
                                                                 {table.packet16, "rtcIntersect16"},
+                                                                {table.packet256, "rtcIntersect16"},
                                                                 {table.stream, "rtcIntersect1M"}};
         for (const auto& [k, counterpart] : kernels) {
             if (!k.intersect) continue;

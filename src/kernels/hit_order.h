@@ -15,7 +15,7 @@ inline bool isCloser(float t, uint32_t geomId, uint32_t primId, const Hit& hit) 
 }
 
 /// A ray every kernel traces; anything else (NaN, infinities, zero direction, tnear > tfar) misses.
-inline bool isValidRay(const Ray& r) {
+[[gnu::always_inline]] inline bool isValidRay(const Ray& r) {
     auto finite = [](float x) { return x - x == 0.0f; };
     return finite(r.ox) && finite(r.oy) && finite(r.oz) && finite(r.dx) && finite(r.dy) && finite(r.dz) &&
            (r.dx != 0.0f || r.dy != 0.0f || r.dz != 0.0f) && r.tnear == r.tnear && r.tfar == r.tfar &&

@@ -11,6 +11,7 @@ template <int N>
 struct IsaKernelTable {
     KernelSet<N> single;  ///< one ray at a time, SIMD across the N children and the M triangles of a block
     KernelSet<N> packet4, packet8, packet16;
+    KernelSet<N> packet256;  ///< 256-ray packets with interval culling, sub-packets of the widest vector
     KernelSet<N> stream;
 };
 

@@ -2,6 +2,7 @@
 // kernels/isa/ defines WIDERAY_ISA (the namespace) and WIDERAY_ISA_TABLE (the table's name) and
 // includes this file with its ISA's compiler flags.
 #include "kernels/isa_kernels.h"
+#include "kernels/traverse_large_packet.h"
 #include "kernels/traverse_stream.h"
 
 namespace wideray {
@@ -44,6 +45,23 @@ void packetOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occlude
         tracePacket<N, K, true>(scene, rays + i, int(count - i < K ? count - i : K), nullptr, occluded + i);
 }
 
+/// Packets of 256 rays (a 16x16 tile in Morton order), sub-packets as wide as the ISA allows.
+template <int N>
+void largePacketIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
+    if (costs) return singleIntersect<N>(scene, rays, hits, count, costs);
+    constexpr int K = kMaxWidth, P = 256 / K;
+    for (size_t i = 0; i < count; i += K * P)
+        traceLargePacket<N, K, P, false>(scene, rays + i, int(count - i < K * P ? count - i : K * P), hits + i, nullptr);
+}
+
+template <int N>
+void largePacketOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count) {
+    constexpr int K = kMaxWidth, P = 256 / K;
+    for (size_t i = 0; i < count; i += K * P)
+        traceLargePacket<N, K, P, true>(scene, rays + i, int(count - i < K * P ? count - i : K * P), nullptr,
+                                        occluded + i);
+}
+
 /// Streams of up to kStreamSize rays, SIMD across the widest vector of the ISA.
 constexpr size_t kStreamSize = 4096;
 
@@ -75,6 +93,7 @@ IsaKernelTable<N> makeTable() {
 #if defined(__AVX512F__)
     t.packet16 = {"packet16", &packetIntersect<N, 16>, &packetOccluded<N, 16>};
 #endif
+    t.packet256 = {"packet256", &largePacketIntersect<N>, &largePacketOccluded<N>};
     t.stream = {"stream", &streamIntersect<N>, &streamOccluded<N>};
     return t;
 }

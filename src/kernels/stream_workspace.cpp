@@ -26,7 +26,7 @@ StreamWorkspace::~StreamWorkspace() {
 void StreamWorkspace::reserveRays(size_t n) {
     if (n <= capacity) return;
     size_t stride = (n + 15) / 16 * 16;  // keeps every array 64-byte aligned
-    size_t bytes = stride * (4 * (kFloatArrays + kIntArrays) + sizeof(uint32_t) + sizeof(uint64_t));
+    size_t bytes = stride * (4 * (kFloatArrays + kIntArrays) + sizeof(uint32_t) + sizeof(uint64_t) + 1);
     char* block = static_cast<char*>(allocate(bytes));
     std::free(ox);
     float** floats[kFloatArrays] = {&ox, &oy, &oz, &rdx, &rdy, &rdz, &tnear, &tfar, &sx, &sy, &sz, &u, &v};
@@ -41,6 +41,8 @@ void StreamWorkspace::reserveRays(size_t n) {
     keys = reinterpret_cast<uint64_t*>(block);
     block += stride * 8;
     rayOf = reinterpret_cast<uint32_t*>(block);
+    block += stride * 4;
+    valid = reinterpret_cast<uint8_t*>(block);
     capacity = stride;
 }
 

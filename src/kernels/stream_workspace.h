@@ -14,6 +14,7 @@ struct StreamWorkspace {
     int32_t *kx = nullptr, *ky = nullptr, *kz = nullptr, *prim = nullptr;
     uint32_t* rayOf = nullptr;  ///< stream slot -> index in the caller's array
     uint64_t* keys = nullptr;   ///< sort keys: (octant, Morton code) << 32 | ray index
+    uint8_t* valid = nullptr;   ///< per ray of the caller's array: whether it is traced at all
     size_t capacity = 0;
     int32_t* arena = nullptr;   ///< the ray lists of the nodes waiting on the traversal stack
     size_t arenaCapacity = 0;

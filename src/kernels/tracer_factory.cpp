@@ -11,7 +11,7 @@ namespace {
 
 constexpr std::pair<KernelChoice, const char*> kKernelNames[] = {
     {KernelChoice::Scalar, "scalar"},   {KernelChoice::Single, "single"},   {KernelChoice::Packet4, "packet4"},
-    {KernelChoice::Packet8, "packet8"},
+    {KernelChoice::Packet8, "packet8"},   {KernelChoice::Packet256, "packet256"},
     {KernelChoice::Packet16, "packet16"}, {KernelChoice::Stream, "stream"}, {KernelChoice::Auto, "auto"}};
 
 constexpr std::pair<Backend, const char*> kBackendNames[] = {{Backend::Wideray, "wideray"}, {Backend::Embree, "embree"}};
@@ -30,6 +30,7 @@ KernelSet<N> pickKernel(const IsaKernelTable<N>& table, KernelChoice choice, Isa
     case KernelChoice::Packet4: k = table.packet4; break;
     case KernelChoice::Packet8: k = table.packet8; break;
     case KernelChoice::Packet16: k = table.packet16; break;
+    case KernelChoice::Packet256: k = table.packet256; break;
     case KernelChoice::Stream: k = table.stream; break;
     case KernelChoice::Auto: break;
     }
@@ -45,7 +46,7 @@ BuiltTracer build(const Scene& scene, const TriangleMesh& world, const TracerCon
     IsaKernelTable<N> table = kernelTable<N>(isa);
     KernelSet<N> coherent, incoherent;
     if (config.kernel == KernelChoice::Auto) {
-        coherent = table.packet16.intersect ? table.packet16 : table.packet8.intersect ? table.packet8 : table.packet4;
+        coherent = table.packet256;
         incoherent = table.single;
     } else {
         coherent = incoherent = pickKernel(table, config.kernel, isa);

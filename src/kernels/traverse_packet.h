@@ -69,23 +69,30 @@ inline vbool<K> loadPacket(const Ray* rays, int count, PacketRay<K>& p, PacketHi
     using F = vfloat<K>;
     alignas(64) float ox[K], oy[K], oz[K], dx[K], dy[K], dz[K], tn[K], tf[K];
     for (int i = 0; i < K; ++i) {
-        bool valid = i < count && isValidRay(rays[i]);
-        const Ray r = valid ? rays[i] : Ray{};
+        const Ray& r = rays[i < count ? i : 0];
         ox[i] = r.ox; oy[i] = r.oy; oz[i] = r.oz;
         dx[i] = r.dx; dy[i] = r.dy; dz[i] = r.dz;
-        tn[i] = valid ? r.tnear : __builtin_huge_valf();
-        tf[i] = valid ? r.tfar : -__builtin_huge_valf();
+        tn[i] = r.tnear; tf[i] = r.tfar;
     }
-    F Dx = F::load(dx), Dy = F::load(dy), Dz = F::load(dz);
-    p.ox = F::load(ox); p.oy = F::load(oy); p.oz = F::load(oz);
-    p.rdx = F(1.0f) / Dx; p.rdy = F(1.0f) / Dy; p.rdz = F(1.0f) / Dz;
-    p.negX = p.rdx < F(0.0f); p.negY = p.rdy < F(0.0f); p.negZ = p.rdz < F(0.0f);
-    p.tnear = F::load(tn);
+    alignas(64) static constexpr int32_t kLane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    F Ox = F::load(ox), Oy = F::load(oy), Oz = F::load(oz), Dx = F::load(dx), Dy = F::load(dy), Dz = F::load(dz);
+    F tnear = F::load(tn), tfar = F::load(tf);
+    const F zero(0.0f), inf(__builtin_huge_valf());
+    // isValidRay, lane by lane: finite origin and direction, a non-zero direction, tnear <= tfar.
+    vbool<K> valid = (vint<K>::load(kLane) < vint<K>(count)) & isFinite(Ox) & isFinite(Oy) & isFinite(Oz) &
+                     isFinite(Dx) & isFinite(Dy) & isFinite(Dz) &
+                     andNot(vbool<K>(true), (Dx == zero) & (Dy == zero) & (Dz == zero)) & (tnear <= tfar) &
+                     (tnear < inf);
+    const F one(1.0f);
+    Dx = select(valid, Dx, zero); Dy = select(valid, Dy, zero); Dz = select(valid, Dz, one);
+    p.ox = select(valid, Ox, zero); p.oy = select(valid, Oy, zero); p.oz = select(valid, Oz, zero);
+    p.rdx = one / Dx; p.rdy = one / Dy; p.rdz = one / Dz;
+    p.negX = p.rdx < zero; p.negY = p.rdy < zero; p.negZ = p.rdz < zero;
+    p.tnear = select(valid, tnear, inf);
     p.woop = makeWatertightRay<F, vint<K>>(p.ox, p.oy, p.oz, Dx, Dy, Dz);
-    h.t = F::load(tf);
-    h.u = h.v = F(0.0f);
+    h.t = select(valid, tfar, -inf);
+    h.u = h.v = zero;
     h.primId = vint<K>(kNoPrim);
-    vbool<K> valid = p.tnear <= h.t;
     classifyOctant(p, movemask(valid));
     classifyAxes(p, movemask(valid));
     return valid;
@@ -93,7 +100,7 @@ inline vbool<K> loadPacket(const Ray* rays, int count, PacketRay<K>& p, PacketHi
 
 /// Entry distances of the packet into child i of a node; +inf for rays that miss or are inactive.
 template <int N, int K>
-inline vfloat<K> packetChildEntry(const WideNode<N>& node, int i, const PacketRay<K>& p, const vfloat<K>& tfar,
+[[gnu::always_inline]] inline vfloat<K> packetChildEntry(const WideNode<N>& node, int i, const PacketRay<K>& p, const vfloat<K>& tfar,
                                   const vbool<K>& active) {
     using F = vfloat<K>;
     F nearX, farX, nearY, farY, nearZ, farZ;
@@ -118,7 +125,7 @@ inline vfloat<K> packetChildEntry(const WideNode<N>& node, int i, const PacketRa
 
 /// All K rays against the triangles of one block. Returns the lanes that hit (for any-hit).
 template <int K, bool AnyHit>
-inline vbool<K> intersectBlockPacket(const TriangleBlock<kBlockSize>& block, const PacketRay<K>& p,
+[[gnu::always_inline]] inline vbool<K> intersectBlockPacket(const TriangleBlock<kBlockSize>& block, const PacketRay<K>& p,
                                      vbool<K> active, PacketHit<K>& h) {
     using F = vfloat<K>;
     using I = vint<K>;

@@ -24,12 +24,14 @@ inline uint32_t spreadBits10(uint32_t x) {
 }
 
 /// Fills the workspace with the valid rays, sorted; returns how many there are.
+template <int K>
 inline size_t loadStream(const Ray* rays, size_t count, StreamWorkspace& ws) {
     ws.reserveRays(count);
     float lo[3] = {__builtin_huge_valf(), __builtin_huge_valf(), __builtin_huge_valf()};
     float hi[3] = {-__builtin_huge_valf(), -__builtin_huge_valf(), -__builtin_huge_valf()};
     for (size_t i = 0; i < count; ++i) {
-        if (!isValidRay(rays[i])) continue;
+        ws.valid[i] = isValidRay(rays[i]);
+        if (!ws.valid[i]) continue;
         const float o[3] = {rays[i].ox, rays[i].oy, rays[i].oz};
         for (int a = 0; a < 3; ++a) {
             lo[a] = min(lo[a], o[a]);
@@ -40,8 +42,8 @@ inline size_t loadStream(const Ray* rays, size_t count, StreamWorkspace& ws) {
     for (int a = 0; a < 3; ++a) scale[a] = 1023.0f / max(hi[a] - lo[a], 1e-30f);
     size_t n = 0;
     for (size_t i = 0; i < count; ++i) {
+        if (!ws.valid[i]) continue;
         const Ray& r = rays[i];
-        if (!isValidRay(r)) continue;
         uint32_t octant = (r.dx < 0.0f ? 1u : 0u) | (r.dy < 0.0f ? 2u : 0u) | (r.dz < 0.0f ? 4u : 0u);
         uint32_t morton = spreadBits10(uint32_t((r.ox - lo[0]) * scale[0])) |
                           (spreadBits10(uint32_t((r.oy - lo[1]) * scale[1])) << 1) |
@@ -49,18 +51,31 @@ inline size_t loadStream(const Ray* rays, size_t count, StreamWorkspace& ws) {
         ws.keys[n++] = (uint64_t(octant << 30 | morton) << 32) | i;
     }
     sortStreamKeys(ws.keys, n);
-    for (size_t s = 0; s < n; ++s) {
-        uint32_t i = uint32_t(ws.keys[s]);
-        const Ray& r = rays[i];
-        auto woop = makeWatertightRay<float, int32_t>(r.ox, r.oy, r.oz, r.dx, r.dy, r.dz);
-        ws.rayOf[s] = i;
-        ws.ox[s] = r.ox; ws.oy[s] = r.oy; ws.oz[s] = r.oz;
-        ws.rdx[s] = 1.0f / r.dx; ws.rdy[s] = 1.0f / r.dy; ws.rdz[s] = 1.0f / r.dz;
-        ws.tnear[s] = r.tnear; ws.tfar[s] = r.tfar;
-        ws.kx[s] = woop.kx; ws.ky[s] = woop.ky; ws.kz[s] = woop.kz;
-        ws.sx[s] = woop.sx; ws.sy[s] = woop.sy; ws.sz[s] = woop.sz;
-        ws.u[s] = ws.v[s] = 0.0f;
-        ws.prim[s] = kNoPrim;
+    // Set up K rays at a time with the packet code (same arithmetic as every other kernel).
+    for (size_t s = 0; s < n; s += K) {
+        alignas(64) float ox[K], oy[K], oz[K], dx[K], dy[K], dz[K];
+        const int count = int(n - s < size_t(K) ? n - s : size_t(K));
+        for (int l = 0; l < K; ++l) {
+            const Ray& r = rays[uint32_t(ws.keys[s + (l < count ? l : 0)])];
+            ox[l] = r.ox; oy[l] = r.oy; oz[l] = r.oz;
+            dx[l] = r.dx; dy[l] = r.dy; dz[l] = r.dz;
+        }
+        using F = vfloat<K>;
+        F Ox = F::load(ox), Oy = F::load(oy), Oz = F::load(oz), Dx = F::load(dx), Dy = F::load(dy), Dz = F::load(dz);
+        auto woop = makeWatertightRay<F, vint<K>>(Ox, Oy, Oz, Dx, Dy, Dz);
+        // The arrays have room for whole vectors (capacity is a multiple of 16).
+        Ox.store(ws.ox + s); Oy.store(ws.oy + s); Oz.store(ws.oz + s);
+        (F(1.0f) / Dx).store(ws.rdx + s); (F(1.0f) / Dy).store(ws.rdy + s); (F(1.0f) / Dz).store(ws.rdz + s);
+        woop.kx.store(ws.kx + s); woop.ky.store(ws.ky + s); woop.kz.store(ws.kz + s);
+        woop.sx.store(ws.sx + s); woop.sy.store(ws.sy + s); woop.sz.store(ws.sz + s);
+        F(0.0f).store(ws.u + s); F(0.0f).store(ws.v + s);
+        vint<K>(kNoPrim).store(ws.prim + s);
+        for (int l = 0; l < count; ++l) {
+            uint32_t i = uint32_t(ws.keys[s + l]);
+            ws.rayOf[s + l] = i;
+            ws.tnear[s + l] = rays[i].tnear;
+            ws.tfar[s + l] = rays[i].tfar;
+        }
     }
     return n;
 }
@@ -202,7 +217,7 @@ inline void traceStream(const SceneView<N>& scene, const Ray* rays, size_t count
         if constexpr (AnyHit) occludedOut[i] = 0;
         else hitsOut[i] = Hit{};
     }
-    size_t n = loadStream(rays, count, ws);
+    size_t n = loadStream<K>(rays, count, ws);
     if (n == 0) return;
     if (scene.triangles.blocks) traceStreamTriangles<N, K, AnyHit>(scene.triangles, n, ws);
     for (size_t s = 0; s < n; ++s) {

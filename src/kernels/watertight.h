@@ -88,7 +88,7 @@ inline void recomputeZeroEdges(F& U, F& V, F& W, const F& Ax, const F& Ay, const
 /// ray's (kx, ky, kz) axes: a = v0 - o, b = v1 - o, c = v2 - o. Returns the lanes where the ray hits
 /// with tnear <= t <= tfar, writing t, u and v there (u, v weight v1 and v2). Both faces are hit.
 template <class F, class B>
-inline B intersectWatertightPermuted(const F& sx, const F& sy, const F& sz, B valid, const F& akx, const F& aky,
+[[gnu::always_inline]] inline B intersectWatertightPermuted(const F& sx, const F& sy, const F& sz, B valid, const F& akx, const F& aky,
                                      const F& akz, const F& bkx, const F& bky, const F& bkz, const F& ckx,
                                      const F& cky, const F& ckz, const F& tnear, const F& tfar, F& t, F& u, F& v) {
     F Ax = akx - sx * akz;
@@ -124,7 +124,7 @@ inline B intersectWatertightPermuted(const F& sx, const F& sy, const F& sz, B va
 
 /// The test for a ray (or rays, lane by lane) whose axes may differ per lane.
 template <class F, class I, class B>
-inline B intersectWatertight(const WatertightRay<F, I>& r, B valid, const F& v0x, const F& v0y, const F& v0z,
+[[gnu::always_inline]] inline B intersectWatertight(const WatertightRay<F, I>& r, B valid, const F& v0x, const F& v0y, const F& v0z,
                              const F& v1x, const F& v1y, const F& v1z, const F& v2x, const F& v2y,
                              const F& v2z, const F& tnear, const F& tfar, F& t, F& u, F& v) {
     F ax = v0x - r.ox, ay = v0y - r.oy, az = v0z - r.oz;

@@ -1,0 +1,228 @@
+#pragma once
+// Large packets (256 rays: a 16x16 pixel block) for coherent rays. Inner nodes are tested once for
+// the whole packet with interval arithmetic over the packet's origins and reciprocal directions
+// (Wald, Boulos, Shirley 2007, "Ray Tracing Deformable Scenes Using Dynamic Bounding Volume
+// Hierarchies"; Boulos et al. 2007, "Packet-based Whitted and Distribution Ray Tracing"): one
+// N-wide test replaces P per-packet tests. At a leaf, each K-wide sub-packet tests the leaf's box
+// per ray and then its triangles, with the reference's arithmetic. Packets whose rays do not share
+// a direction octant are traced as ordinary K-wide packets.
+#include "kernels/traverse_packet.h"
+
+#include "simd/isa_namespace.h"
+
+namespace wideray {
+inline namespace WIDERAY_ISA {
+
+/// Bounds of the packet's rays, per axis: origins and reciprocal directions (all of one sign).
+struct RayInterval {
+    float oLo[3], oHi[3], rdLo[3], rdHi[3];
+    bool neg[3];
+    float tnear;
+};
+
+/// Interval test of all N children of a node. The bounds are widened by 2^-16 relative, far more
+/// than the rounding of the interval products, so that no child that one of the rays enters is lost.
+template <int N>
+[[gnu::always_inline]] inline uint32_t intersectChildrenInterval(const WideNode<N>& node, const RayInterval& r,
+                                                                 float tfarMax, float* tEntryOut) {
+    constexpr int W = kNodeSimdWidth<N>;
+    using F = vfloat<W>;
+    uint32_t mask = 0;
+    for (int c = 0; c < N; c += W) {
+        F entry(r.tnear), exit(tfarMax);
+        for (int a = 0; a < 3; ++a) {
+            const float* nearPlane = node.planes(a, r.neg[a]) + c;
+            const float* farPlane = node.planes(a, !r.neg[a]) + c;
+            // (plane - o) * rd over o in [oLo, oHi] and rd in [rdLo, rdHi]: the extremes are among
+            // the four endpoint products.
+            F nLo = F::load(nearPlane) - F(r.oHi[a]), nHi = F::load(nearPlane) - F(r.oLo[a]);
+            F fLo = F::load(farPlane) - F(r.oHi[a]), fHi = F::load(farPlane) - F(r.oLo[a]);
+            F rLo(r.rdLo[a]), rHi(r.rdHi[a]);
+            F t0 = min(min(nLo * rLo, nLo * rHi), min(nHi * rLo, nHi * rHi));
+            F t1 = max(max(fLo * rLo, fLo * rHi), max(fHi * rLo, fHi * rHi));
+            entry = max(t0, entry);
+            exit = min(t1, exit);
+        }
+        const F lowerScale(1.0f - 1.0f / 65536.0f), upperScale(kRobustFarScale);
+        entry = select(entry > F(0.0f), entry * lowerScale, entry * upperScale);
+        exit = select(exit > F(0.0f), exit * upperScale, exit * lowerScale);
+        entry.store(tEntryOut + c);
+        mask |= movemask(entry <= exit) << c;
+    }
+    return mask;
+}
+
+/// The leaf's box as one child slot of its parent, tested per ray of a sub-packet.
+struct LeafBox {
+    float lower[3], upper[3];
+};
+
+template <int K>
+[[gnu::always_inline]] inline vbool<K> intersectLeafBox(const LeafBox& b, const PacketRay<K>& p, const vfloat<K>& tfar,
+                                                        const vbool<K>& active) {
+    using F = vfloat<K>;
+    F nearX = F(p.negXs ? b.upper[0] : b.lower[0]), farX = F(p.negXs ? b.lower[0] : b.upper[0]);
+    F nearY = F(p.negYs ? b.upper[1] : b.lower[1]), farY = F(p.negYs ? b.lower[1] : b.upper[1]);
+    F nearZ = F(p.negZs ? b.upper[2] : b.lower[2]), farZ = F(p.negZs ? b.lower[2] : b.upper[2]);
+    F tx0 = (nearX - p.ox) * p.rdx, tx1 = (farX - p.ox) * p.rdx;
+    F ty0 = (nearY - p.oy) * p.rdy, ty1 = (farY - p.oy) * p.rdy;
+    F tz0 = (nearZ - p.oz) * p.rdz, tz1 = (farZ - p.oz) * p.rdz;
+    F tEntry = max(tx0, max(ty0, max(tz0, p.tnear)));
+    F tExit = min(tx1, min(ty1, min(tz1, tfar))) * F(kRobustFarScale);
+    return active & (tEntry <= tExit);
+}
+
+/// Closest hits (or occlusion) of up to K * P rays, P sub-packets of K.
+template <int N, int K, int P, bool AnyHit>
+inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
+                             uint8_t* occludedOut) {
+    using F = vfloat<K>;
+    PacketRay<K> packets[P];
+    PacketHit<K> hits[P];
+    vbool<K> valid[P], done[P];
+    const int subCount = (count + K - 1) / K;
+    static_assert(P <= 64);
+    uint64_t anyValid = 0;  // sub-packets with rays still to trace
+    bool oneOctant = true;
+    for (int s = 0; s < subCount; ++s) {
+        valid[s] = loadPacket(rays + s * K, count - s * K < K ? count - s * K : K, packets[s], hits[s]);
+        done[s] = andNot(vbool<K>(true), valid[s]);
+        if (none(valid[s])) continue;
+        const PacketRay<K>& first = packets[__builtin_ctzll(anyValid | (uint64_t(1) << s))];
+        oneOctant = oneOctant && packets[s].uniformOctant && packets[s].negXs == first.negXs &&
+                    packets[s].negYs == first.negYs && packets[s].negZs == first.negZs;
+        anyValid |= uint64_t(1) << s;
+    }
+    const TriangleBvhView<N>& tri = scene.triangles;
+    if (!oneOctant || !tri.blocks || tri.root.isLeaf()) {
+        for (int s = 0; s < subCount; ++s) {
+            int n = count - s * K < K ? count - s * K : K;
+            tracePacket<N, K, AnyHit>(scene, rays + s * K, n, AnyHit ? nullptr : hitsOut + s * K,
+                                      AnyHit ? occludedOut + s * K : nullptr);
+        }
+        return;
+    }
+
+    if (anyValid) {
+        RayInterval iv;
+        const PacketRay<K>& first = packets[__builtin_ctzll(anyValid)];
+        iv.neg[0] = first.negXs; iv.neg[1] = first.negYs; iv.neg[2] = first.negZs;
+        F oLo[3], oHi[3], rLo[3], rHi[3], tn(__builtin_huge_valf());
+        const F inf(__builtin_huge_valf());
+        for (int a = 0; a < 3; ++a) oLo[a] = rLo[a] = inf, oHi[a] = rHi[a] = -inf;
+        for (uint64_t bits = anyValid; bits; bits &= bits - 1) {
+            int s = __builtin_ctzll(bits);
+            const PacketRay<K>& p = packets[s];
+            const F* o[3] = {&p.ox, &p.oy, &p.oz};
+            const F* rd[3] = {&p.rdx, &p.rdy, &p.rdz};
+            for (int a = 0; a < 3; ++a) {
+                oLo[a] = min(select(valid[s], *o[a], inf), oLo[a]);
+                oHi[a] = max(select(valid[s], *o[a], -inf), oHi[a]);
+                rLo[a] = min(select(valid[s], *rd[a], inf), rLo[a]);
+                rHi[a] = max(select(valid[s], *rd[a], -inf), rHi[a]);
+            }
+            tn = min(select(valid[s], p.tnear, inf), tn);
+        }
+        for (int a = 0; a < 3; ++a) {
+            iv.oLo[a] = reduceMin(oLo[a]); iv.oHi[a] = -reduceMin(-oHi[a]);
+            iv.rdLo[a] = reduceMin(rLo[a]); iv.rdHi[a] = -reduceMin(-rHi[a]);
+        }
+        iv.tnear = reduceMin(tn);
+        // Clamp infinite reciprocals (zero direction components) so that 0 * inf cannot appear.
+        for (int a = 0; a < 3; ++a) {
+            iv.rdLo[a] = max(iv.rdLo[a], -3.0e38f); iv.rdHi[a] = min(iv.rdHi[a], 3.0e38f);
+        }
+
+        auto packetTfarMax = [&] {
+            F m(-__builtin_huge_valf());
+            for (uint64_t bits = anyValid; bits; bits &= bits - 1) {
+                int s = __builtin_ctzll(bits);
+                m = max(select(done[s], F(-__builtin_huge_valf()), hits[s].t), m);
+            }
+            return -reduceMin(-m);
+        };
+
+        struct Entry {
+            NodeRef ref;
+            float tEntry;
+            LeafBox box;
+        };
+        Entry stack[kStackSize<N>];
+        int sp = 0;
+        stack[sp++] = {tri.root, iv.tnear, {}};
+        float tfarMax = packetTfarMax();
+        while (sp > 0) {
+            Entry e = stack[--sp];
+            if (e.tEntry > tfarMax * kRobustFarScale) continue;
+            if (!e.ref.isLeaf()) {
+                const WideNode<N>& node = tri.nodes[e.ref.index()];
+                alignas(64) float tEntry[N];
+                uint32_t mask = intersectChildrenInterval<N>(node, iv, tfarMax, tEntry);
+                const int base = sp;
+                for (; mask; mask &= mask - 1) {
+                    int i = __builtin_ctz(mask);
+                    if (node.child[i].bits == NodeRef::empty().bits) continue;
+                    Entry c{node.child[i], tEntry[i],
+                            {{node.lowerX[i], node.lowerY[i], node.lowerZ[i]},
+                             {node.upperX[i], node.upperY[i], node.upperZ[i]}}};
+                    int j = sp++;
+                    for (; j > base && stack[j - 1].tEntry < c.tEntry; --j) stack[j] = stack[j - 1];
+                    stack[j] = c;
+                }
+                continue;
+            }
+            for (uint64_t bits = anyValid; bits; bits &= bits - 1) {
+                int s = __builtin_ctzll(bits);
+                vbool<K> active = andNot(valid[s], done[s]);
+                active = intersectLeafBox(e.box, packets[s], hits[s].t, active);
+                if (none(active)) continue;
+                for (uint32_t b = e.ref.first(); b < e.ref.first() + e.ref.count(); ++b) {
+                    vbool<K> hit = intersectBlockPacket<K, AnyHit>(tri.blocks[b], packets[s], active, hits[s]);
+                    if constexpr (AnyHit) {
+                        done[s] |= hit;
+                        active = andNot(active, hit);
+                    }
+                }
+                if (AnyHit && all(done[s])) anyValid &= ~(uint64_t(1) << s);
+            }
+            if (AnyHit && !anyValid) break;
+            tfarMax = packetTfarMax();
+        }
+    }
+
+    for (int s = 0; s < subCount; ++s) {
+        const int n = count - s * K < K ? count - s * K : K;
+        const Ray* subRays = rays + s * K;
+        PacketLanes<K> lanes;
+        lanes.store(hits[s]);
+        const uint32_t validBits = movemask(valid[s]), doneBits = movemask(done[s]);
+        for (int lane = 0; lane < n; ++lane) {
+            const int i = s * K + lane;
+            if (!(validBits >> lane & 1)) {
+                if constexpr (AnyHit) occludedOut[i] = 0;
+                else hitsOut[i] = Hit{};
+                continue;
+            }
+            TraversalCost cost;
+            if constexpr (AnyHit) {
+                bool occluded = doneBits >> lane & 1;
+                if (!occluded && scene.user.prims) {
+                    Hit hit;
+                    hit.t = subRays[lane].tfar;
+                    occluded = traceUser<N, kNodeSimdWidth<N>, true>(scene.user, subRays[lane],
+                                                                     makeSingleRayState(subRays[lane]), hit, cost);
+                }
+                occludedOut[i] = occluded ? 1 : 0;
+            } else {
+                Hit hit = lanes.hit(lane, 0);
+                if (scene.user.prims)
+                    traceUser<N, kNodeSimdWidth<N>, false>(scene.user, subRays[lane], makeSingleRayState(subRays[lane]),
+                                                           hit, cost);
+                hitsOut[i] = hit.valid() ? hit : Hit{};
+            }
+        }
+    }
+}
+
+} // namespace WIDERAY_ISA
+} // namespace wideray
