@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  cmake ninja-build g++ pkg-config
+  cmake ninja-build g++ pkg-config python3
   libembree-dev libtbb-dev libglm-dev libopenimageio-dev
   nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev libstb-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev

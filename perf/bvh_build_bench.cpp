@@ -1,0 +1,69 @@
+// The whole build of our acceleration structure (binned SAH binary BVH, collapse to 8 wide, leaf
+// blocks; core/scene_accel.h) by mesh size: generated icospheres and tori, then the shared meshes
+// that are present. The build runs on all hardware threads through oneTBB.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/mesh_generators.h"
+#include "core/scene_accel.h"
+#include "perf_inputs.h"
+
+namespace wideray::perf {
+namespace {
+
+void buildAccel(benchmark::State& state, const TriangleMesh& mesh) {
+    size_t bytes = 0;
+    for (auto _ : state) {
+        std::vector<std::unique_ptr<Geometry>> noUserGeometry(1);
+        SceneAccel<8> accel(mesh, std::move(noUserGeometry));
+        bytes = accel.bytes();
+        benchmark::DoNotOptimize(bytes);
+    }
+    double triangles = double(mesh.triangleCount());
+    state.counters["triangles"] = triangles;
+    state.counters["triangles/s"] =
+        benchmark::Counter(triangles * double(state.iterations()), benchmark::Counter::kIsRate);
+    state.counters["MB"] = double(bytes) / 1e6;
+}
+
+/// 20 * 4^s triangles: 5,120 to 1,310,720.
+void buildIcosphere(benchmark::State& state) {
+    const TriangleMesh mesh = makeIcosphere(int(state.range(0)));
+    buildAccel(state, mesh);
+}
+BENCHMARK(buildIcosphere)
+    ->Name("bvhBuild/icosphere/subdivisions")
+    ->DenseRange(4, 8)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// 2 * segments * segments / 2 triangles: 10,000 to 1,000,000.
+void buildTorus(benchmark::State& state) {
+    const int segments = int(state.range(0));
+    const TriangleMesh mesh = makeTorus(1.0f, 0.3f, segments, segments / 2);
+    buildAccel(state, mesh);
+}
+BENCHMARK(buildTorus)
+    ->Name("bvhBuild/torus/majorSegments")
+    ->Arg(100)
+    ->Arg(316)
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void buildShared(benchmark::State& state, std::filesystem::path file) { buildAccel(state, cachedMesh(file)); }
+
+[[maybe_unused]] const bool registerSharedMeshes = [] {
+    for (const char* relative : kSharedMeshes)
+        if (auto file = sharedMeshPath(relative))
+            benchmark::RegisterBenchmark(("bvhBuild/shared/" + file->filename().string()).c_str(), buildShared, *file)
+                ->Unit(benchmark::kMillisecond)
+                ->UseRealTime();
+    return true;
+}();
+
+} // namespace
+} // namespace wideray::perf
