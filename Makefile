@@ -34,7 +34,44 @@ test: build
 sanitize: deps
 	cmake -S . -B $(ASAN_BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWIDERAY_SANITIZE=ON -DWIDERAY_BENCHMARKS=OFF
 	cmake --build $(ASAN_BUILD) -j $(JOBS) --target wideray_tests wideray
-	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
+	ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp UBSAN_OPTIONS=print_stacktrace=1 ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
+
+## Our kernels against Embree's on the shared meshes: a comparison on all threads (out/bench.json),
+## a thread-scaling run on 1..nproc threads (out/scaling.json), then docs/performance.md and
+## docs/performance.svg regenerated from the JSON. Meshes missing from SCENES_DIR are left out.
+SCENES_DIR ?= ../shared/scenes
+BENCH_SIZE ?= 1024x1024
+BENCH_RUNS ?= 5
+BENCH_MESHES ?= cornell-box/CornellBox-Original.obj suzanne/suzanne.obj teapot/teapot.obj \
+  stanford-bunny/bun_zipper.ply stanford-dragon-100k/dragon_100k.ply \
+  bitterli-coffee-maker/coffee_maker_merged.ply crytek-sponza/sponza.obj \
+  bitterli-country-kitchen/country_kitchen_merged.ply
+SCALING_MESHES ?= stanford-bunny/bun_zipper.ply crytek-sponza/sponza.obj
+SCALING_THREADS ?= $(shell seq 1 $(shell nproc))
+BENCH_COMMAND = $(BUILD)/wideray bench $(wildcard $(addprefix $(SCENES_DIR)/,$(BENCH_MESHES))) \
+  --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --json out/bench.json
+SCALING_COMMAND = $(BUILD)/wideray bench $(wildcard $(addprefix $(SCENES_DIR)/,$(SCALING_MESHES))) \
+  --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --rays primary,diffuse
+SCALING_LOOP = for t in $(SCALING_THREADS); do $(SCALING_COMMAND) --threads $$t --json out/scaling-$$t-threads.json || exit 1; done
+SCALING_MERGE = python3 scripts/performance_report.py merge out/scaling.json $(foreach t,$(SCALING_THREADS),out/scaling-$(t)-threads.json)
+
+bench: deps
+	@test -d $(SCENES_DIR) || { echo "make bench needs the shared meshes in $(SCENES_DIR) (set SCENES_DIR)" >&2; exit 1; }
+	cmake -S . -B $(BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(BUILD) -j $(JOBS) --target wideray
+	$(BENCH_COMMAND)
+	$(SCALING_LOOP)
+	$(SCALING_MERGE)
+	python3 scripts/performance_report.py report --bench out/bench.json --scaling out/scaling.json \
+	  --command '$(BENCH_COMMAND)' --command '$(SCALING_LOOP)' --command '$(SCALING_MERGE)' \
+	  --markdown docs/performance.md --chart docs/performance.svg
+
+## Renders every effect scene to docs/gallery/NAME.png.
+GALLERY_SCENES := beer metals soft_shadows glossy dof textures fog polarization polarization_off
+gallery: configure
+	cmake --build $(BUILD) -j $(JOBS) --target wideray
+	mkdir -p docs/gallery
+	$(BUILD)/wideray render $(GALLERY_SCENES:%=scenes/%.json) -o docs/gallery/
 
 install: build
 	cmake --install $(BUILD)

@@ -102,7 +102,7 @@ void renderOne(const RenderArgs& args, const std::string& sceneFile) {
                "{:.2f} Mrays/s ({}) -> {}\n",
                sceneFile, image.width, image.height,
                args.spp > 0 ? args.spp : scene.image.samplesPerPixel, world.triangles.size(), built.accelName,
-               buildSeconds * 1e3, stats.seconds * 1e3, stats.primaryRays + stats.shadowRays,
+               buildSeconds * 1e3, stats.seconds * 1e3, stats.totalRays(),
                stats.mraysPerSecond(), built.engine, out.string());
     if (options.aov == Aov::Cost) fmt::print("  cost heatmap: max {} nodes + primitives per pixel\n", stats.maxCost);
     std::fflush(stdout);

@@ -1,7 +1,10 @@
 #pragma once
 // Deterministic random numbers: seeded from pixel, sample and purpose, never from the thread or the
 // schedule, so images do not change with the thread count or the tile order.
+#include <cmath>
 #include <cstdint>
+
+#include <glm/glm.hpp>
 
 namespace wideray {
 
@@ -27,5 +30,17 @@ public:
 private:
     uint32_t state_;
 };
+
+/// A jittered point in cell `index` of a grid of `count` cells over [0, 1)^2. The grid has as many
+/// columns as the largest divisor of `count` not above its square root, so that every count tiles the
+/// square exactly and the points stay unbiased (4: 2x2, 8: 2x4, 7: 1x7).
+inline glm::vec2 stratifiedPoint(int index, int count, SampleRng& rng) {
+    int columns = int(std::sqrt(float(count)));
+    while (count % columns != 0) --columns;
+    const int rows = count / columns;
+    const float u = (float(index % columns) + rng.next()) / float(columns);
+    const float v = (float(index / columns) + rng.next()) / float(rows);
+    return {u, v};
+}
 
 } // namespace wideray

@@ -1,6 +1,7 @@
 #include "core/renderer.h"
 
 #include <atomic>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <mutex>
@@ -14,8 +15,11 @@
 #include "core/heatmap.h"
 #include "core/random.h"
 #include "core/surface.h"
+#include "core/path_state.h"
 #include "core/tile_order.h"
-#include "shading/direct_lighting.h"
+#include "shading/beer.h"
+#include "shading/fog_medium.h"
+#include "shading/surface_scattering.h"
 
 namespace wideray {
 namespace {
@@ -55,27 +59,46 @@ private:
     bool printed_ = false;
 };
 
-float sceneExtent(const TriangleMesh& world, const Scene& scene) {
+/// The box around the scene's objects; with `withLights`, around its lights' positions too.
+Bounds3f sceneBounds(const TriangleMesh& world, const Scene& scene, bool withLights) {
     Bounds3f b;
     for (const glm::vec3& p : world.positions) b.grow(p);
     for (const Sphere& s : scene.spheres) {
         b.grow(s.center - glm::vec3(s.radius));
         b.grow(s.center + glm::vec3(s.radius));
     }
-    return b.empty() ? 1.0f : glm::length(b.extent());
+    if (!withLights) return b;
+    for (const Light& light : scene.lights) {
+        if (light.type == LightType::Directional) continue;
+        b.grow(light.position - glm::vec3(light.radius));
+        b.grow(light.position + glm::vec3(light.radius));
+        if (light.type == LightType::Quad) b.grow(light.position + light.edgeU + light.edgeV);
+    }
+    return b;
 }
+
+constexpr uint32_t kCameraPurpose = 1;
+/// Purposes from here on seed the random numbers of a path's bounces, one per depth.
+constexpr uint32_t kBouncePurpose = 2;
 
 /// The work space of one tile, reused by the tiles a thread renders.
 struct TileBuffers {
+    std::vector<PathState> paths, nextPaths;
     std::vector<Ray> rays;
     std::vector<Hit> hits;
     std::vector<TraversalCost> costs;
-    std::vector<uint32_t> rayPixel;  ///< pixel index in the tile of each primary ray
     std::vector<ShadowSample> shadows;
-    std::vector<uint32_t> shadowPixel;
     std::vector<Ray> shadowRays;
     std::vector<uint8_t> occluded;
+    std::vector<LightSample> lightScratch;
 };
+
+/// The fraction of light left after a segment inside the medium of `material`; a segment that
+/// never ends (an open mesh) keeps only the channels the medium does not absorb.
+glm::vec3 mediumTransmittance(const Material& material, float distance) {
+    if (std::isinf(distance)) return glm::vec3(glm::equal(material.absorption, glm::vec3(0.0f)));
+    return beerTransmittance(material.absorption, distance);
+}
 
 } // namespace
 
@@ -86,89 +109,125 @@ Image render(const Scene& scene, const TriangleMesh& world, const Tracer& tracer
     const int spp = options.samplesPerPixel > 0 ? options.samplesPerPixel : scene.image.samplesPerPixel;
     const int tileSize = options.tileSize;
     const CameraModel camera(scene.camera, width, height);
-    const float epsilon = 1e-4f * sceneExtent(world, scene);
+    const Bounds3f objects = sceneBounds(world, scene, false);
+    const float epsilon = 1e-4f * (objects.empty() ? 1.0f : glm::length(objects.extent()));
+    const FogMedium fog(scene.fog, sceneBounds(world, scene, true));
+    const ShadingContext shading{scene, fog, epsilon};
     const std::vector<TileRect> tiles = hilbertTiles(width, height, tileSize);
     const std::vector<uint32_t> morton = mortonPixelOrder(tileSize);
     const int channels = options.aov == Aov::Depth ? 1 : 3;
 
     Image image(width, height, channels);
     std::vector<uint32_t> costImage(options.aov == Aov::Cost ? size_t(width) * height : 0);
-    std::atomic<uint64_t> primaryRays{0}, shadowRays{0};
+    std::atomic<uint64_t> primaryRays{0}, secondaryRays{0}, shadowRays{0};
     tbb::enumerable_thread_specific<TileBuffers> buffers;
     ProgressReporter progress(options.progress, options.label, tiles.size());
+    const float sampleWeight = 1.0f / float(spp);
+    auto addToPixel = [&](uint32_t x, uint32_t y, const glm::vec3& color) {
+        float* out = image.at(int(x), int(y));
+        for (int c = 0; c < 3; ++c) out[c] += color[c] * sampleWeight;
+    };
+
+    // Primary paths of the tile in Morton order, each pixel's samples stratified over the pixel and,
+    // in a rotated order, over the lens.
+    auto startPaths = [&](const TileRect& tile, std::vector<PathState>& paths) {
+        paths.clear();
+        for (uint32_t local : morton) {
+            const int x = tile.x0 + int(local % tileSize), y = tile.y0 + int(local / tileSize);
+            if (x >= tile.x1 || y >= tile.y1) continue;
+            const uint32_t lensRotation = pcgHash(uint32_t(y) * uint32_t(width) + uint32_t(x));
+            for (int s = 0; s < spp; ++s) {
+                SampleRng rng(uint32_t(x), uint32_t(y), uint32_t(s), kCameraPurpose);
+                const glm::vec2 jitter = spp > 1 ? stratifiedPoint(s, spp, rng) : glm::vec2(0.5f);
+                const glm::vec2 lens = stratifiedPoint(int((uint32_t(s) + lensRotation) % uint32_t(spp)), spp, rng);
+                PathState path;
+                path.ray = camera.generate(float(x) + jitter.x, float(y) + jitter.y, lens);
+                path.pixelX = uint32_t(x);
+                path.pixelY = uint32_t(y);
+                path.key = uint32_t(s);
+                paths.push_back(path);
+            }
+        }
+    };
+
+    // The normal, depth and cost AOVs of the primary hits.
+    auto writeAov = [&](TileBuffers& buf) {
+        for (size_t i = 0; i < buf.paths.size(); ++i) {
+            const PathState& path = buf.paths[i];
+            const Hit& hit = buf.hits[i];
+            float* out = image.at(int(path.pixelX), int(path.pixelY));
+            if (options.aov == Aov::Cost) {
+                costImage[size_t(path.pixelY) * width + path.pixelX] += buf.costs[i].nodes + buf.costs[i].primitives;
+            } else if (options.aov == Aov::Depth) {
+                out[0] += hit.valid() ? hit.t * sampleWeight : 0.0f;
+            } else if (hit.valid()) {
+                addToPixel(path.pixelX, path.pixelY, surfaceAt(world, tracer, path.ray, hit).shadingNormal * 0.5f + 0.5f);
+            }
+        }
+    };
+
+    // One bounce of every path: attenuation along the segment just traced (Beer inside a dielectric,
+    // the fog outside, whose in-scattered light becomes shadow samples), then the background or the
+    // surface.
+    auto shadeBounce = [&](TileBuffers& buf) {
+        ScatterOutput out{buf.shadows, buf.nextPaths, buf.lightScratch};
+        for (size_t i = 0; i < buf.paths.size(); ++i) {
+            PathState& path = buf.paths[i];
+            const Hit& hit = buf.hits[i];
+            const float segment = hit.valid() ? hit.t : INFINITY;
+            SampleRng rng(path.pixelX, path.pixelY, path.key, kBouncePurpose + uint32_t(path.depth));
+            if (!path.media.empty()) {
+                const glm::vec3 inside = mediumTransmittance(scene.materials[path.media.innermost()], segment);
+                path.throughputS *= inside;
+                path.throughputP *= inside;
+            } else if (fog.present()) {
+                fog.addInscattering(scene.lights, path.ray, segment, path.throughput(), epsilon, path.pixelX,
+                                    path.pixelY, rng, buf.lightScratch, buf.shadows);
+                const float outside = fog.transmittance(path.ray, segment);
+                path.throughputS *= outside;
+                path.throughputP *= outside;
+            }
+            if (!hit.valid()) {
+                addToPixel(path.pixelX, path.pixelY, path.throughput() * scene.background);
+                continue;
+            }
+            scatterAtSurface(shading, path, surfaceAt(world, tracer, path.ray, hit), rng, out);
+        }
+    };
+
+    auto traceShadows = [&](TileBuffers& buf) {
+        const size_t n = buf.shadows.size();
+        buf.shadowRays.resize(n);
+        for (size_t i = 0; i < n; ++i) buf.shadowRays[i] = buf.shadows[i].ray;
+        buf.occluded.assign(n, 0);
+        tracer.occluded(buf.shadowRays, buf.occluded, Coherence::Incoherent);
+        shadowRays += n;
+        for (size_t i = 0; i < n; ++i)
+            if (!buf.occluded[i]) addToPixel(buf.shadows[i].pixelX, buf.shadows[i].pixelY, buf.shadows[i].contribution);
+    };
 
     auto renderTile = [&](const TileRect& tile) {
         TileBuffers& buf = buffers.local();
-        buf.rays.clear();
-        buf.rayPixel.clear();
-        for (uint32_t local : morton) {
-            int x = tile.x0 + int(local % tileSize), y = tile.y0 + int(local / tileSize);
-            if (x >= tile.x1 || y >= tile.y1) continue;
-            for (int s = 0; s < spp; ++s) {
-                float jx = 0.5f, jy = 0.5f;
-                if (spp > 1) {
-                    SampleRng rng(uint32_t(x), uint32_t(y), uint32_t(s), 1);
-                    jx = rng.next();
-                    jy = rng.next();
-                }
-                buf.rays.push_back(camera.generate(float(x) + jx, float(y) + jy));
-                buf.rayPixel.push_back(uint32_t(y) * width + x);
+        startPaths(tile, buf.paths);
+        for (int bounce = 0; !buf.paths.empty(); ++bounce) {
+            const size_t n = buf.paths.size();
+            buf.rays.resize(n);
+            for (size_t i = 0; i < n; ++i) buf.rays[i] = buf.paths[i].ray;
+            buf.hits.assign(n, Hit{});
+            const bool primary = bounce == 0;
+            if (primary && options.aov == Aov::Cost) buf.costs.assign(n, TraversalCost{});
+            tracer.intersect(buf.rays, buf.hits, primary ? Coherence::Coherent : Coherence::Incoherent,
+                             primary && options.aov == Aov::Cost ? buf.costs.data() : nullptr);
+            (primary ? primaryRays : secondaryRays) += n;
+            if (options.aov != Aov::Color) {
+                writeAov(buf);
+                break;
             }
-        }
-        const size_t n = buf.rays.size();
-        buf.hits.assign(n, Hit{});
-        buf.costs.assign(n, TraversalCost{});
-        tracer.intersect(buf.rays, buf.hits, Coherence::Coherent,
-                         options.aov == Aov::Cost ? buf.costs.data() : nullptr);
-        primaryRays += n;
-
-        if (options.aov != Aov::Color) {
-            for (size_t i = 0; i < n; ++i) {
-                uint32_t pixel = buf.rayPixel[i];
-                float* out = &image.pixels[size_t(pixel) * channels];
-                const Hit& hit = buf.hits[i];
-                if (options.aov == Aov::Cost) {
-                    costImage[pixel] += buf.costs[i].nodes + buf.costs[i].primitives;
-                } else if (options.aov == Aov::Depth) {
-                    out[0] += hit.valid() ? hit.t / float(spp) : 0.0f;
-                } else if (hit.valid()) {
-                    glm::vec3 nrm = surfaceAt(world, tracer, buf.rays[i], hit).shadingNormal * 0.5f + 0.5f;
-                    for (int c = 0; c < 3; ++c) out[c] += nrm[c] / float(spp);
-                }
-            }
-            progress.tileDone();
-            return;
-        }
-
-        buf.shadows.clear();
-        buf.shadowPixel.clear();
-        for (size_t i = 0; i < n; ++i) {
-            uint32_t pixel = buf.rayPixel[i];
-            float* out = &image.pixels[size_t(pixel) * 3];
-            const Hit& hit = buf.hits[i];
-            if (!hit.valid()) {
-                for (int c = 0; c < 3; ++c) out[c] += scene.background[c] / float(spp);
-                continue;
-            }
-            const Ray& ray = buf.rays[i];
-            SurfacePoint sp = surfaceAt(world, tracer, ray, hit);
-            glm::vec3 dir(ray.dx, ray.dy, ray.dz);
-            glm::vec3 n = glm::dot(sp.shadingNormal, dir) < 0.0f ? sp.shadingNormal : -sp.shadingNormal;
-            const Material& material = scene.materials[sp.material];
-            SampleRng rng(pixel % uint32_t(width), pixel / uint32_t(width), uint32_t(i % spp), 2);
-            size_t before = buf.shadows.size();
-            sampleDirectLighting(scene.lights, sp.position, n, material.color, epsilon, rng, buf.shadows);
-            buf.shadowPixel.insert(buf.shadowPixel.end(), buf.shadows.size() - before, pixel);
-        }
-        buf.shadowRays.resize(buf.shadows.size());
-        for (size_t i = 0; i < buf.shadows.size(); ++i) buf.shadowRays[i] = buf.shadows[i].ray;
-        buf.occluded.assign(buf.shadows.size(), 0);
-        tracer.occluded(buf.shadowRays, buf.occluded, Coherence::Incoherent);
-        shadowRays += buf.shadows.size();
-        for (size_t i = 0; i < buf.shadows.size(); ++i) {
-            if (buf.occluded[i]) continue;
-            float* out = &image.pixels[size_t(buf.shadowPixel[i]) * 3];
-            for (int c = 0; c < 3; ++c) out[c] += buf.shadows[i].contribution[c] / float(spp);
+            buf.shadows.clear();
+            buf.nextPaths.clear();
+            shadeBounce(buf);
+            traceShadows(buf);
+            std::swap(buf.paths, buf.nextPaths);
         }
         progress.tileDone();
     };
@@ -181,6 +240,7 @@ Image render(const Scene& scene, const TriangleMesh& world, const Tracer& tracer
                       tbb::simple_partitioner());
     stats.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     stats.primaryRays = primaryRays;
+    stats.secondaryRays = secondaryRays;
     stats.shadowRays = shadowRays;
 
     if (options.aov == Aov::Cost) {

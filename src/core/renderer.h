@@ -1,6 +1,8 @@
 #pragma once
-// The tiled renderer: tiles in Hilbert order on oneTBB, primary rays of a tile in Morton order traced
-// as one coherent batch, then the tile's shadow rays as a second batch.
+// The tiled renderer: tiles in Hilbert order on oneTBB. Within a tile, paths advance wavefront style:
+// the primary rays (Morton order) are traced as one coherent batch, every later bounce's reflected
+// and refracted rays as one incoherent batch, and each bounce's shadow rays (surfaces and fog) as
+// another. Shading is in src/shading/surface_scattering.h and fog_medium.h.
 #include <cstdint>
 #include <string>
 
@@ -24,9 +26,11 @@ struct RenderOptions {
 struct RenderStats {
     double seconds = 0;
     uint64_t primaryRays = 0;
+    uint64_t secondaryRays = 0;  ///< reflected and refracted
     uint64_t shadowRays = 0;
     uint64_t maxCost = 0;  ///< cost AOV: the largest per-pixel traversal cost
-    double mraysPerSecond() const { return seconds > 0 ? double(primaryRays + shadowRays) / seconds * 1e-6 : 0.0; }
+    uint64_t totalRays() const { return primaryRays + secondaryRays + shadowRays; }
+    double mraysPerSecond() const { return seconds > 0 ? double(totalRays()) / seconds * 1e-6 : 0.0; }
 };
 
 /// Renders `scene`, whose triangles flattened to world space are `world` (geomId 0 of `tracer`).

@@ -58,6 +58,7 @@ struct Material {
     glm::vec3 absorption{0.0f};             ///< dielectric: Beer absorption coefficient per unit length
     float roughness = 0.0f;                 ///< conductor, dielectric: 0 is smooth, up to 1 for glossy
     std::optional<Texture> roughnessTexture{};  ///< replaces `roughness` where set
+    int samples = 1;                        ///< conductor, dielectric: rays a glossy lobe branches into
 };
 
 /// One placement of a mesh. `material` overrides the mesh's own materials unless it is kMeshMaterials.
@@ -74,11 +75,11 @@ struct Sphere {
     uint32_t material = 0;
 };
 
-/// A homogeneous medium filling the scene: light over a distance d keeps exp(-density d) of itself
-/// and gains `color` for the rest.
+/// A homogeneous medium filling the box around the scene's objects and lights: light over a distance
+/// d keeps exp(-density d) of itself, and the fog scatters the lights' light towards the viewer.
 struct Fog {
-    float density = 0.0f;  ///< 0: no fog
-    glm::vec3 color{1.0f};
+    float density = 0.0f;  ///< extinction per unit length; 0: no fog
+    glm::vec3 color{1.0f};  ///< the fraction of the extinguished light that is scattered (the albedo)
 };
 
 struct RenderSettings {

@@ -370,12 +370,12 @@ private:
             material.color = glm::vec3(1.0f);
             readColor(m, material);
         } else if (type == "conductor") {
-            checkKeys(m, {"type", "preset", "eta", "k", "roughness"});
+            checkKeys(m, {"type", "preset", "eta", "k", "roughness", "samples"});
             material.type = MaterialType::Conductor;
             readComplexIor(m, material);
             readRoughness(m, material);
         } else if (type == "dielectric") {
-            checkKeys(m, {"type", "ior", "absorption", "roughness"});
+            checkKeys(m, {"type", "ior", "absorption", "roughness", "samples"});
             material.type = MaterialType::Dielectric;
             if (m.has("ior")) {
                 material.ior = number(m["ior"]);
@@ -403,8 +403,9 @@ private:
         else material.color = reflectance(c);
     }
 
-    /// "roughness": a number in [0, 1] or a texture of such numbers.
+    /// "roughness": a number in [0, 1] or a texture of such numbers; "samples": rays of the glossy lobe.
     void readRoughness(const Node& m, Material& material) {
+        if (m.has("samples")) material.samples = integer(m["samples"], 1, 4096);
         if (!m.has("roughness")) return;
         const Node r = m["roughness"];
         if (r.value.is_object()) material.roughnessTexture = texture(r, true);
@@ -886,9 +887,11 @@ Json materialJson(const Material& m) {
         return {{"type", "plastic"}, {"color", color}, {"specular", m.specular}, {"shininess", m.shininess}};
     case MaterialType::Mirror: return {{"type", "mirror"}, {"color", color}};
     case MaterialType::Conductor:
-        return {{"type", "conductor"}, {"eta", array(m.eta)}, {"k", array(m.k)}, {"roughness", roughness}};
+        return {{"type", "conductor"}, {"eta", array(m.eta)}, {"k", array(m.k)}, {"roughness", roughness},
+                {"samples", m.samples}};
     case MaterialType::Dielectric:
-        return {{"type", "dielectric"}, {"ior", m.ior}, {"absorption", array(m.absorption)}, {"roughness", roughness}};
+        return {{"type", "dielectric"}, {"ior", m.ior}, {"absorption", array(m.absorption)}, {"roughness", roughness},
+                {"samples", m.samples}};
     }
     throw std::invalid_argument("writeScene: unknown material type");
 }

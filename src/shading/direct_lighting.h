@@ -1,26 +1,29 @@
 #pragma once
-// Direct illumination of a diffuse surface: one shadow ray per light sample, resolved in a batch.
+// Light sampling: one shadow ray per point light, directional light and area-light sample, with the
+// light each brings if it is not occluded. Surfaces and the fog weigh the samples by their own
+// scattering; the renderer resolves all shadow rays of a bounce in one batch.
 #include <vector>
 
 #include <glm/glm.hpp>
 
-#include "core/geometry.h"
 #include "core/random.h"
 #include "core/ray.h"
 #include "core/scene.h"
 
 namespace wideray {
 
-/// The light a shadow ray would bring if it is not occluded.
-struct ShadowSample {
-    Ray ray;
-    glm::vec3 contribution;
+/// Light arriving at a point from one light sample, counted only if `shadowRay` is not occluded.
+struct LightSample {
+    Ray shadowRay;         ///< from the point towards the light, over [epsilon, distance - epsilon]
+    glm::vec3 direction;   ///< unit, towards the light
+    float distance;        ///< to the sampled point of the light; infinite for directional lights
+    glm::vec3 irradiance;  ///< on a surface facing the light, already divided by the light's sample count
 };
 
-/// Appends the shadow samples of every light for a Lambertian point with the given albedo.
-/// `normal` faces the viewer; `epsilon` is the shadow rays' tnear (and light-side margin).
-void sampleDirectLighting(const std::vector<Light>& lights, const glm::vec3& position, const glm::vec3& normal,
-                          const glm::vec3& albedo, float epsilon, SampleRng& rng,
-                          std::vector<ShadowSample>& out);
+/// Appends the samples of every light seen from `position`. An area light gets its `samples` shadow
+/// rays, stratified over its surface, but at most `areaSampleLimit`. Samples from behind a one-sided
+/// light, or from a light closer than 2 `epsilon`, are left out.
+void sampleLights(const std::vector<Light>& lights, const glm::vec3& position, float epsilon, int areaSampleLimit,
+                  SampleRng& rng, std::vector<LightSample>& out);
 
 } // namespace wideray
