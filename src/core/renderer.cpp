@@ -1,5 +1,6 @@
 #include "core/renderer.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <chrono>
@@ -23,6 +24,10 @@
 
 namespace wideray {
 namespace {
+
+uint32_t directionOctant(const Ray& r) {
+    return (r.dx < 0.0f ? 1u : 0u) | (r.dy < 0.0f ? 2u : 0u) | (r.dz < 0.0f ? 4u : 0u);
+}
 
 using Clock = std::chrono::steady_clock;
 
@@ -90,6 +95,8 @@ struct TileBuffers {
     std::vector<ShadowSample> shadows;
     std::vector<Ray> shadowRays;
     std::vector<uint8_t> occluded;
+    std::vector<uint32_t> shadowOrder;   ///< the shadow batch sorted for tracing
+    std::vector<uint8_t> shadowBlocked;  ///< occlusion per shadow sample, in the order they were made
     std::vector<LightSample> lightScratch;
 };
 
@@ -195,15 +202,25 @@ Image render(const Scene& scene, const TriangleMesh& world, const Tracer& tracer
         }
     };
 
-    auto traceShadows = [&](TileBuffers& buf) {
+    // The shadow rays of the camera hits are coherent once grouped by direction octant (rays toward
+    // one light from neighbouring pixels share it), so they go to the packet kernels in that order.
+    auto traceShadows = [&](TileBuffers& buf, bool fromCameraHits) {
         const size_t n = buf.shadows.size();
+        buf.shadowOrder.resize(n);
+        for (size_t i = 0; i < n; ++i) buf.shadowOrder[i] = uint32_t(i);
+        if (fromCameraHits)
+            std::stable_sort(buf.shadowOrder.begin(), buf.shadowOrder.end(), [&](uint32_t a, uint32_t b) {
+                return directionOctant(buf.shadows[a].ray) < directionOctant(buf.shadows[b].ray);
+            });
         buf.shadowRays.resize(n);
-        for (size_t i = 0; i < n; ++i) buf.shadowRays[i] = buf.shadows[i].ray;
+        for (size_t i = 0; i < n; ++i) buf.shadowRays[i] = buf.shadows[buf.shadowOrder[i]].ray;
         buf.occluded.assign(n, 0);
-        tracer.occluded(buf.shadowRays, buf.occluded, Coherence::Incoherent);
+        tracer.occluded(buf.shadowRays, buf.occluded, fromCameraHits ? Coherence::Coherent : Coherence::Incoherent);
         shadowRays += n;
+        buf.shadowBlocked.resize(n);
+        for (size_t i = 0; i < n; ++i) buf.shadowBlocked[buf.shadowOrder[i]] = buf.occluded[i];
         for (size_t i = 0; i < n; ++i)
-            if (!buf.occluded[i]) addToPixel(buf.shadows[i].pixelX, buf.shadows[i].pixelY, buf.shadows[i].contribution);
+            if (!buf.shadowBlocked[i]) addToPixel(buf.shadows[i].pixelX, buf.shadows[i].pixelY, buf.shadows[i].contribution);
     };
 
     auto renderTile = [&](const TileRect& tile) {
@@ -226,7 +243,7 @@ Image render(const Scene& scene, const TriangleMesh& world, const Tracer& tracer
             buf.shadows.clear();
             buf.nextPaths.clear();
             shadeBounce(buf);
-            traceShadows(buf);
+            traceShadows(buf, bounce == 0);
             std::swap(buf.paths, buf.nextPaths);
         }
         progress.tileDone();
