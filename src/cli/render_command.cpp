@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/image_difference.h"
 #include "core/fp_mode.h"
 #include "core/mesh_framing.h"
 #include "core/renderer.h"
@@ -25,6 +26,7 @@ struct RenderArgs {
     int spp = 0;
     std::string aov = "color";
     std::string backend = "wideray";
+    bool compareBackends = false;
     EngineOptions engine;
 };
 
@@ -105,6 +107,18 @@ void renderOne(const RenderArgs& args, const std::string& sceneFile) {
                buildSeconds * 1e3, stats.seconds * 1e3, stats.totalRays(),
                stats.mraysPerSecond(), built.engine, out.string());
     if (options.aov == Aov::Cost) fmt::print("  cost heatmap: max {} nodes + primitives per pixel\n", stats.maxCost);
+    if (args.compareBackends) {
+        RenderArgs otherArgs = args;
+        otherArgs.backend = parseBackend(args.backend) == Backend::Embree ? "wideray" : "embree";
+        BackendTracer other = buildTracer(otherArgs, scene, world);
+        RenderStats otherStats;
+        Image otherImage = render(scene, world, *other.tracer, options, otherStats);
+        if (options.aov == Aov::Depth) normalizeDepth(otherImage, out);
+        ImageDifference d = compareImages(image, otherImage, 1.0f / 255.0f);
+        fmt::print("  vs {} ({:.2f} Mrays/s): mean |difference| {:.6f}, max {:.4f}, {} of {} pixels differ by more "
+                   "than 1/255\n",
+                   other.engine, otherStats.mraysPerSecond(), d.meanAbsolute, d.maxAbsolute, d.pixelsOver, d.pixels);
+    }
     std::fflush(stdout);
 }
 
@@ -131,6 +145,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                     "and its widest native packets; --kernel, --isa and --bvh-width do not apply)")
         ->check(CLI::IsMember({"wideray", "embree"}))
         ->capture_default_str();
+    cmd->add_flag("--compare-backends", args->compareBackends,
+                  "Also render through the other backend and print pixel difference statistics");
     addEngineOptions(*cmd, args->engine);
     cmd->callback([args, &exitCode] {
         FlushToZeroScope ftz;
