@@ -93,6 +93,13 @@ void expectAllKernelsMatchReference(const SceneAccel<N>& accel, const std::vecto
             }
             EXPECT_EQ(hitMismatches, 0u) << what << " " << kernel.name << " " << isaName(isa) << " N=" << N;
             EXPECT_EQ(occlusionMismatches, 0u) << what << " " << kernel.name << " " << isaName(isa) << " N=" << N;
+            if (kernel.occludedCached) {
+                ShadowCache cache;
+                std::vector<uint8_t> cached(rays.size(), 7);
+                kernel.occludedCached(accel.view(), rays.data(), cached.data(), rays.size(), cache);
+                EXPECT_TRUE(cached == expectedOccluded) << what << " shadow cache " << isaName(isa) << " N=" << N;
+                EXPECT_LE(cache.hits, cache.queries);
+            }
         }
 }
 
@@ -149,6 +156,20 @@ INSTANTIATE_TEST_SUITE_P(RealMeshes, SharedMeshKernels,
                          ::testing::Values("teapot/teapot.obj", "stanford-bunny/bun_zipper.ply",
                                            "crytek-sponza/sponza.obj",
                                            "bitterli-country-kitchen/country_kitchen_merged.ply"));
+
+TEST(Kernels, ShadowCacheAnswersRepeatedOccluders) {
+    FlushToZeroScope ftz;
+    TriangleMesh mesh = makeQuad();  // one occluder between the origins and the light
+    SceneAccel<8> accel(mesh, {});
+    std::vector<Ray> rays;
+    for (int i = 0; i < 100; ++i) rays.push_back({-0.5f + 0.01f * float(i), -1.0f, 0.2f, 0.0f, 1.0f, 0.0f, 0.0f, 2.0f});
+    ShadowCache cache;
+    std::vector<uint8_t> occluded(rays.size());
+    kernelTable<8>(bestIsa()).single.occludedCached(accel.view(), rays.data(), occluded.data(), rays.size(), cache);
+    for (uint8_t o : occluded) EXPECT_EQ(o, 1);
+    EXPECT_EQ(cache.queries, 100u);
+    EXPECT_GE(cache.hits, 90u) << "the quad's block answers all but the first ray (and rays of the other triangle)";
+}
 
 TEST(Kernels, EdgeCases) {
     FlushToZeroScope ftz;

@@ -77,3 +77,35 @@ TEST(Render, AovsAreMeaningful) {
 
 } // namespace
 } // namespace wideray
+
+namespace wideray {
+namespace {
+
+/// Every kernel, with and without the shadow cache, renders exactly the reference's image.
+TEST(Render, KernelsAndShadowCacheRenderTheReferenceImage) {
+    FlushToZeroScope ftz;
+    Scene scene = loadScene(kSourceDir / "scenes/metals.json");
+    TriangleMesh world = flattenTriangles(scene);
+    RenderOptions options;
+    options.width = 96;
+    options.height = 72;
+    auto renderWith = [&](KernelChoice kernel, bool cache) {
+        TracerConfig config;
+        config.kernel = kernel;
+        config.shadowCache = cache;
+        BuiltTracer built = buildWiderayTracer(scene, world, config);
+        RenderStats stats;
+        Image image = render(scene, world, *built.tracer, options, stats);
+        if (cache) EXPECT_GT(built.tracer->shadowCacheStats().first, 0u) << "reflections cast cached shadow rays";
+        return image;
+    };
+    Image reference = renderWith(KernelChoice::Scalar, false);
+    for (KernelChoice k : {KernelChoice::Auto, KernelChoice::Single, KernelChoice::Packet4, KernelChoice::Stream})
+        for (bool cache : {false, true}) {
+            if (cache && k != KernelChoice::Auto && k != KernelChoice::Single) continue;
+            EXPECT_TRUE(renderWith(k, cache).pixels == reference.pixels) << kernelName(k) << " cache " << cache;
+        }
+}
+
+} // namespace
+} // namespace wideray

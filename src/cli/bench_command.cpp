@@ -95,6 +95,14 @@ std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, bool allIsas) {
                                                                 {table.packet16, "rtcIntersect16"},
                                                                 {table.packet256, "rtcIntersect16"},
                                                                 {table.stream, "rtcIntersect1M"}};
+        // The shadow cache: one per task, so that each chunk of rays starts cold (as a renderer tile would).
+        if (table.single.occludedCached)
+            out.push_back({"wideray", "single+cache", isaName(isa), "rtcIntersect1",
+                           [view, k = table.single](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
+                               if (h) return;
+                               ShadowCache cache;
+                               k.occludedCached(view, r, o, n, cache);
+                           }});
         for (const auto& [k, counterpart] : kernels) {
             if (!k.intersect) continue;
             out.push_back({"wideray", k.name, isaName(isa), counterpart, [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
@@ -171,6 +179,7 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
         std::map<std::string, double> embreeSpeed;
         std::vector<std::pair<const Candidate*, Measurement>> measured;
         for (const Candidate& c : candidates) {
+            if (!anyHit && c.kernel == "single+cache") continue;  // the cache is for shadow rays only
             fmt::print(stderr, "\r{} {} {} {}...            ", name, kindName, c.kernel, c.isa);
             Measurement m = measure(c, set, anyHit, coherent, args.runs);
             if (c.backend == "embree") embreeSpeed[c.kernel] = m.mraysPerSecond;

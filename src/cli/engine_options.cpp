@@ -18,6 +18,11 @@ void addEngineOptions(CLI::App& app, EngineOptions& options) {
                    "asking for one the CPU lacks is an error")
         ->check(CLI::IsMember({"sse42", "avx2", "avx512", "auto"}))
         ->capture_default_str();
+    app.add_option("--shadow-cache", options.shadowCache,
+                   "Last-occluder cache per thread and recursion depth for incoherent shadow rays (single-ray "
+                   "kernel): on or off. Off by default: see docs/performance-analysis.md for when it pays")
+        ->check(CLI::IsMember({"on", "off"}))
+        ->capture_default_str();
     app.add_option("--bvh-width", options.bvhWidth, "Children per BVH node: 4 or 8")
         ->check(CLI::IsMember({4, 8}))
         ->capture_default_str();

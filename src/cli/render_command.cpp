@@ -42,6 +42,7 @@ TracerConfig makeTracerConfig(const EngineOptions& engine) {
     config.bvhWidth = engine.bvhWidth;
     config.kernel = *parseKernel(engine.kernel);
     if (engine.isa != "auto") config.isa = parseIsa(engine.isa);
+    config.shadowCache = engine.shadowCache == "on";
     return config;
 }
 
@@ -107,6 +108,9 @@ void renderOne(const RenderArgs& args, const std::string& sceneFile) {
                buildSeconds * 1e3, stats.seconds * 1e3, stats.totalRays(),
                stats.mraysPerSecond(), built.engine, out.string());
     if (options.aov == Aov::Cost) fmt::print("  cost heatmap: max {} nodes + primitives per pixel\n", stats.maxCost);
+    if (auto [queries, hits] = built.tracer->shadowCacheStats(); queries > 0)
+        fmt::print("  shadow cache: {} of {} shadow rays answered by the cached occluder ({:.1f}%)\n", hits, queries,
+                   100.0 * double(hits) / double(queries));
     if (args.compareBackends) {
         RenderArgs otherArgs = args;
         otherArgs.backend = parseBackend(args.backend) == Backend::Embree ? "wideray" : "embree";

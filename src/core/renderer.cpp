@@ -204,7 +204,8 @@ Image render(const Scene& scene, const TriangleMesh& world, const Tracer& tracer
 
     // The shadow rays of the camera hits are coherent once grouped by direction octant (rays toward
     // one light from neighbouring pixels share it), so they go to the packet kernels in that order.
-    auto traceShadows = [&](TileBuffers& buf, bool fromCameraHits) {
+    auto traceShadows = [&](TileBuffers& buf, int depth) {
+        const bool fromCameraHits = depth == 0;
         const size_t n = buf.shadows.size();
         buf.shadowOrder.resize(n);
         for (size_t i = 0; i < n; ++i) buf.shadowOrder[i] = uint32_t(i);
@@ -215,7 +216,8 @@ Image render(const Scene& scene, const TriangleMesh& world, const Tracer& tracer
         buf.shadowRays.resize(n);
         for (size_t i = 0; i < n; ++i) buf.shadowRays[i] = buf.shadows[buf.shadowOrder[i]].ray;
         buf.occluded.assign(n, 0);
-        tracer.occluded(buf.shadowRays, buf.occluded, fromCameraHits ? Coherence::Coherent : Coherence::Incoherent);
+        tracer.occluded(buf.shadowRays, buf.occluded, fromCameraHits ? Coherence::Coherent : Coherence::Incoherent,
+                        depth);
         shadowRays += n;
         buf.shadowBlocked.resize(n);
         for (size_t i = 0; i < n; ++i) buf.shadowBlocked[buf.shadowOrder[i]] = buf.occluded[i];
@@ -243,7 +245,7 @@ Image render(const Scene& scene, const TriangleMesh& world, const Tracer& tracer
             buf.shadows.clear();
             buf.nextPaths.clear();
             shadeBounce(buf);
-            traceShadows(buf, bounce == 0);
+            traceShadows(buf, bounce);
             std::swap(buf.paths, buf.nextPaths);
         }
         progress.tileDone();

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <utility>
 
 #include "core/geometry.h"
 #include "core/ray.h"
@@ -21,11 +22,15 @@ public:
     /// Closest hits; hits[i] starts as a miss. `costs` (optional) receives per-ray traversal work.
     virtual void intersect(std::span<const Ray> rays, std::span<Hit> hits, Coherence coherence,
                            TraversalCost* costs = nullptr) const = 0;
-    /// occluded[i] = 1 if anything lies within [tnear, tfar] of ray i.
-    virtual void occluded(std::span<const Ray> rays, std::span<uint8_t> occluded, Coherence coherence) const = 0;
+    /// occluded[i] = 1 if anything lies within [tnear, tfar] of ray i. `depth` is the recursion depth
+    /// the shadow rays start from, which picks the shadow cache a tracer may keep (-1: none).
+    virtual void occluded(std::span<const Ray> rays, std::span<uint8_t> occluded, Coherence coherence,
+                          int depth = -1) const = 0;
 
     /// The geometry a hit's geomId names (geomId 0, the triangles, is resolved by the caller).
     virtual const Geometry& geometry(uint32_t geomId) const = 0;
+    /// Shadow-cache queries and hits so far; zeros for a tracer without one.
+    virtual std::pair<uint64_t, uint64_t> shadowCacheStats() const { return {0, 0}; }
     virtual std::string description() const = 0;
 };
 

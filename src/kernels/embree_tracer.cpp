@@ -275,7 +275,7 @@ void EmbreeTracer::intersect(std::span<const Ray> rays, std::span<Hit> hits, Coh
     if (costs) std::fill(costs, costs + rays.size(), TraversalCost{});
 }
 
-void EmbreeTracer::occluded(std::span<const Ray> rays, std::span<uint8_t> occluded, Coherence coherence) const {
+void EmbreeTracer::occluded(std::span<const Ray> rays, std::span<uint8_t> occluded, Coherence coherence, int) const {
     RTCIntersectContext context = contextFor(coherence);
     RTCScene scene = scene_.get();
     switch (kernel(coherence)) {

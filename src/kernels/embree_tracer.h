@@ -46,7 +46,9 @@ public:
     /// Embree reports no traversal work: `costs`, when given, is filled with zeros.
     void intersect(std::span<const Ray> rays, std::span<Hit> hits, Coherence coherence,
                    TraversalCost* costs = nullptr) const override;
-    void occluded(std::span<const Ray> rays, std::span<uint8_t> occluded, Coherence coherence) const override;
+    /// Embree keeps no shadow cache: `depth` is ignored.
+    void occluded(std::span<const Ray> rays, std::span<uint8_t> occluded, Coherence coherence,
+                  int depth = -1) const override;
     const Geometry& geometry(uint32_t geomId) const override { return *geometries_[geomId]; }
     std::string description() const override;
 

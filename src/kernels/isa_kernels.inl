@@ -31,6 +31,45 @@ void singleOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occlude
     }
 }
 
+/// Any-hit with the shadow cache: the cached block first, then a traversal that remembers the
+/// block that blocked the ray. The answers are the same as without the cache.
+template <int N>
+void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count,
+                          ShadowCache& cache) {
+    const TriangleBvhView<N>& tri = scene.triangles;
+    for (size_t i = 0; i < count; ++i) {
+        const Ray& ray = rays[i];
+        occluded[i] = 0;
+        if (!isValidRay(ray)) continue;
+        const SingleRayState s = makeSingleRayState(ray);
+        Hit hit;
+        hit.t = ray.tfar;
+        ++cache.queries;
+        if (cache.block != kInvalidId && intersectBlock<kBlockSize, true>(tri.blocks[cache.block], s, ray, hit)) {
+            ++cache.hits;
+            occluded[i] = 1;
+            continue;
+        }
+        bool blocked = false;
+        TraversalCost cost;
+        if (tri.blocks)
+            traverseWide<N, kNodeSimdWidth<N>>(
+                tri.nodes, tri.root, s.box, ray.tnear, [&] { return hit.t; },
+                [&](uint32_t first, uint32_t n) {
+                    for (uint32_t b = first; b < first + n; ++b)
+                        if (intersectBlock<kBlockSize, true>(tri.blocks[b], s, ray, hit)) {
+                            cache.block = b;
+                            return blocked = true;
+                        }
+                    return false;
+                },
+                cost);
+        if (!blocked && scene.user.prims)
+            blocked = traceUser<N, kNodeSimdWidth<N>, true>(scene.user, ray, s, hit, cost);
+        occluded[i] = blocked ? 1 : 0;
+    }
+}
+
 /// Packets of K consecutive rays; per-ray costs (the cost AOV) come from the single-ray kernel.
 template <int N, int K>
 void packetIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
@@ -85,7 +124,7 @@ void streamOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occlude
 template <int N>
 IsaKernelTable<N> makeTable() {
     IsaKernelTable<N> t;
-    t.single = {"single", &singleIntersect<N>, &singleOccluded<N>};
+    t.single = {"single", &singleIntersect<N>, &singleOccluded<N>, &singleOccludedCached<N>};
     t.packet4 = {"packet4", &packetIntersect<N, 4>, &packetOccluded<N, 4>};
 #if defined(__AVX2__)
     t.packet8 = {"packet8", &packetIntersect<N, 8>, &packetOccluded<N, 8>};

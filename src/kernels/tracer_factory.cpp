@@ -58,7 +58,7 @@ BuiltTracer build(const Scene& scene, const TriangleMesh& world, const TracerCon
     out.isa = isa;
     out.coherentKernel = coherent.name;
     out.incoherentKernel = incoherent.name;
-    out.tracer = std::make_unique<WiderayTracer<N>>(accel, coherent, incoherent);
+    out.tracer = std::make_unique<WiderayTracer<N>>(accel, coherent, incoherent, config.shadowCache);
     return out;
 }
 

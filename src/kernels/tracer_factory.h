@@ -30,6 +30,7 @@ struct TracerConfig {
     int bvhWidth = 8;
     KernelChoice kernel = KernelChoice::Auto;
     std::optional<Isa> isa;  ///< nullopt: the best this CPU has
+    bool shadowCache = false;  ///< last-occluder cache for incoherent shadow rays (single-ray kernel)
 };
 
 struct BuiltTracer {
