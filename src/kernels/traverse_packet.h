@@ -266,12 +266,14 @@ inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, H
                     done |= hit;
                     h.t = select(hit, F(-__builtin_huge_valf()), h.t);
                     active = andNot(active, hit);
-                    if (all(done)) goto finished;
+                    if (all(done)) {
+                        sp = 0;  // every ray is answered
+                        break;
+                    }
                 }
             }
         pop:;
         }
-    finished:;
     }
 
     PacketLanes<K> lanes;
