@@ -77,8 +77,13 @@ inline vfloat16 bitXor(vfloat16 a, vfloat16 b) {
     return _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a.m), _mm512_castps_si512(b.m)));
 }
 inline vfloat16 select(vbool16 m, vfloat16 a, vfloat16 b) { return _mm512_mask_blend_ps(m.m, b.m, a.m); }
-inline vfloat16 gather(const float* base, vint16 index) { return _mm512_i32gather_ps(index.m, base, 4); }
-inline vint16 gather(const int32_t* base, vint16 index) { return _mm512_i32gather_epi32(index.m, base, 4); }
+// The masked forms: GCC 12 warns that the unmasked ones read an uninitialized source.
+inline vfloat16 gather(const float* base, vint16 index) {
+    return _mm512_mask_i32gather_ps(_mm512_setzero_ps(), 0xFFFF, index.m, base, 4);
+}
+inline vint16 gather(const int32_t* base, vint16 index) {
+    return _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), 0xFFFF, index.m, base, 4);
+}
 /// Writes the lanes of `values` selected by `mask` contiguously to out; returns how many.
 inline int compressStore(int32_t* out, vint16 values, vbool16 mask) {
     _mm512_mask_compressstoreu_epi32(out, mask.m, values.m);
