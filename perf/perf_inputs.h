@@ -9,26 +9,14 @@
 #include <string>
 #include <system_error>
 
-#include "core/bounds.h"
 #include "core/mesh.h"
 #include "core/mesh_io.h"
 #include "core/scene.h"
+#include "test_data.h"
 
 namespace wideray::perf {
 
-/// $WIDERAY_SCENES, else WIDERAY_DEFAULT_SCENES_DIR; nullopt when that is not a directory.
-inline std::optional<std::filesystem::path> sharedScenesDir() {
-    std::filesystem::path dir;
-    if (const char* fromEnvironment = std::getenv("WIDERAY_SCENES"); fromEnvironment && *fromEnvironment)
-        dir = fromEnvironment;
-#ifdef WIDERAY_DEFAULT_SCENES_DIR
-    else
-        dir = WIDERAY_DEFAULT_SCENES_DIR;
-#endif
-    std::error_code error;
-    if (dir.empty() || !std::filesystem::is_directory(dir, error)) return std::nullopt;
-    return dir;
-}
+using wideray::sharedScenesDir;
 
 /// The main file of each shared scene folder (see its README.txt), smallest first.
 inline constexpr const char* kSharedMeshes[] = {
@@ -54,29 +42,6 @@ inline const TriangleMesh& cachedMesh(const std::filesystem::path& file) {
     auto it = meshes.find(file);
     if (it == meshes.end()) it = meshes.emplace(file, loadMesh(file)).first;
     return it->second;
-}
-
-/// A bare mesh placed in a scene by the framing rule of `wideray bench` (core/mesh_framing.h),
-/// for generated meshes that have no file.
-inline Scene framedScene(TriangleMesh mesh, int width, int height) {
-    Scene scene;
-    scene.materials.push_back({"default", MaterialType::Diffuse, glm::vec3(0.8f)});
-    mesh.faceMaterial.assign(mesh.triangles.size(), 0);
-    mesh.materials.clear();
-    Bounds3f b;
-    for (const glm::vec3& p : mesh.positions) b.grow(p);
-    scene.meshes.push_back(std::move(mesh));
-    scene.instances.push_back({});
-    glm::vec3 c = b.center();
-    float R = 0.5f * glm::length(b.extent());
-    scene.camera.position = c + glm::normalize(glm::vec3(0.3f, 0.25f, 1.0f)) * (1.2f * R);
-    scene.camera.lookAt = c;
-    scene.camera.fovY = 50.0f;
-    scene.image = {width, height, 1};
-    Light light;
-    light.position = c + glm::vec3(0.5f * R, 2.0f * R, 0.7f * R);
-    scene.lights.push_back(light);
-    return scene;
 }
 
 /// Seeded uniform floats, so every run measures the same data.

@@ -36,7 +36,7 @@ const TraversalInputs& inputs() {
     static const TraversalInputs built = [] {
         auto bunny = sharedMeshPath(kBunny);
         Scene scene = bunny ? sceneFromMesh(*bunny, kImageSize, kImageSize)
-                            : framedScene(makeTorus(1.0f, 0.3f, 400, 200), kImageSize, kImageSize);
+                            : sceneFromMesh(makeTorus(1.0f, 0.3f, 400, 200), kImageSize, kImageSize);
         TriangleMesh world = flattenTriangles(scene);
         TracerConfig config;
         BuiltTracer tracer = buildWiderayTracer(scene, world, config);

@@ -5,14 +5,13 @@
 
 #include <cstring>
 
-#include "core/camera.h"
+#include "core/bench_rays.h"
 #include "core/fp_mode.h"
 #include "core/mesh_framing.h"
 #include "core/mesh_generators.h"
 #include "core/mesh_io.h"
 #include "core/scene_accel.h"
 #include "core/sphere_geometry.h"
-#include "core/tile_order.h"
 #include "kernels/isa_kernels.h"
 #include "kernels/reference_kernel.h"
 #include "ray_sets.h"
@@ -20,19 +19,6 @@
 
 namespace wideray {
 namespace {
-
-/// Camera rays in 16x16 tiles, Morton order inside each (as the renderer makes them).
-std::vector<Ray> primaryRays(const Scene& scene, int width, int height) {
-    CameraModel camera(scene.camera, width, height);
-    std::vector<Ray> rays;
-    std::vector<uint32_t> morton = mortonPixelOrder(16);
-    for (const TileRect& tile : hilbertTiles(width, height, 16))
-        for (uint32_t local : morton) {
-            int x = tile.x0 + int(local % 16), y = tile.y0 + int(local / 16);
-            if (x < tile.x1 && y < tile.y1) rays.push_back(camera.generate(float(x) + 0.5f, float(y) + 0.5f));
-        }
-    return rays;
-}
 
 /// From each primary hit toward the scene's first light (like the renderer's shadow rays).
 template <int N>

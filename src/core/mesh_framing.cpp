@@ -6,18 +6,16 @@
 
 namespace wideray {
 
-Scene sceneFromMesh(const std::filesystem::path& meshFile, int width, int height) {
+Scene sceneFromMesh(TriangleMesh mesh, int width, int height) {
     Scene scene;
-    scene.file = meshFile;
-    scene.meshes.push_back(loadMesh(meshFile));
-    TriangleMesh& mesh = scene.meshes.back();
     scene.materials.push_back({"default", MaterialType::Diffuse, glm::vec3(0.8f)});
     mesh.faceMaterial.assign(mesh.triangles.size(), 0);
     mesh.materials.clear();
-    scene.instances.push_back({});
-
     Bounds3f b;
     for (const glm::vec3& p : mesh.positions) b.grow(p);
+    scene.meshes.push_back(std::move(mesh));
+    scene.instances.push_back({});
+
     glm::vec3 c = b.center();
     float R = 0.5f * glm::length(b.extent());
     scene.camera.position = c + glm::normalize(glm::vec3(0.3f, 0.25f, 1.0f)) * (1.2f * R);
@@ -30,6 +28,12 @@ Scene sceneFromMesh(const std::filesystem::path& meshFile, int width, int height
     light.position = c + glm::vec3(0.5f * R, 2.0f * R, 0.7f * R);
     light.intensity = 4.0f * R * R;
     scene.lights.push_back(light);
+    return scene;
+}
+
+Scene sceneFromMesh(const std::filesystem::path& meshFile, int width, int height) {
+    Scene scene = sceneFromMesh(loadMesh(meshFile), width, height);
+    scene.file = meshFile;
     return scene;
 }
 

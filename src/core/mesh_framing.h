@@ -10,6 +10,8 @@
 namespace wideray {
 
 Scene sceneFromMesh(const std::filesystem::path& meshFile, int width, int height);
+/// The same rule for a mesh in memory (a generated one, say).
+Scene sceneFromMesh(TriangleMesh mesh, int width, int height);
 
 /// A scene file (.json) as it is, or a bare mesh framed by the rule above.
 Scene loadSceneOrMesh(const std::filesystem::path& file, int meshWidth = 1024, int meshHeight = 1024);
