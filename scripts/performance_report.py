@@ -18,7 +18,7 @@ from collections import OrderedDict
 from xml.sax.saxutils import escape
 
 RAY_KINDS = ("primary", "shadow", "diffuse")
-OUR_KERNELS = ("scalar", "single", "packet4", "packet8", "packet16", "stream")
+OUR_KERNELS = ("scalar", "single", "packet4", "packet8", "packet16", "packet256", "stream", "single+cache")
 ANALYSIS_FILE = "performance-analysis.md"
 
 
@@ -52,7 +52,9 @@ def merge(out_path, in_paths):
 
 def embree_counterpart(our_kernel, ray_kind):
     """The Embree entry point `wideray bench` compares one of our kernels with."""
-    name = {"scalar": "rtcIntersect1", "single": "rtcIntersect1", "stream": "rtcIntersect1M"}.get(our_kernel)
+    # packet256 has no Embree counterpart of its size: it is compared with Embree's widest packet.
+    name = {"scalar": "rtcIntersect1", "single": "rtcIntersect1", "single+cache": "rtcIntersect1",
+            "packet256": "rtcIntersect16", "stream": "rtcIntersect1M"}.get(our_kernel)
     if name is None and our_kernel.startswith("packet"):
         name = "rtcIntersect" + our_kernel[len("packet"):]
     if name and ray_kind == "shadow":
@@ -181,7 +183,8 @@ def summary_section(bench, table, chart_name):
 def kernel_section(bench, table):
     parts = ["## Kernel against kernel\n\nMrays/s. Each of our kernels next to its Embree counterpart: single "
              "ray and the scalar reference against `rtcIntersect1`, packetK against `rtcIntersectK` "
-             "(`rtcOccludedK` for shadow rays), stream against `rtcIntersect1M`."]
+             "(`rtcOccludedK` for shadow rays), packet256 against `rtcIntersect16`, stream against "
+             "`rtcIntersect1M`."]
     for scene in scenes_in_order(bench["results"]):
         header = ["ours", "Embree"]
         for kind in RAY_KINDS:

@@ -5,7 +5,7 @@
 // Hierarchies"; Boulos et al. 2007, "Packet-based Whitted and Distribution Ray Tracing"): one
 // N-wide test replaces P per-packet tests. At a leaf, each K-wide sub-packet tests the leaf's box
 // per ray and then its triangles, with the reference's arithmetic. Packets whose rays do not share
-// a direction octant are traced as ordinary K-wide packets.
+// a direction octant, or spread over more than a few degrees, are traced as ordinary K-wide packets.
 #include "kernels/traverse_packet.h"
 
 #include "simd/isa_namespace.h"
@@ -128,6 +128,22 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
             iv.rdLo[a] = reduceMin(rLo[a]); iv.rdHi[a] = -reduceMin(-rHi[a]);
         }
         iv.tnear = reduceMin(tn);
+        // Interval bounds are only tight for nearly parallel rays (a camera tile, shadow rays from
+        // neighbouring pixels): past about 6 degrees of spread, K-wide packets are faster.
+        float spread = 0.0f, extent = 0.0f;
+        for (int a = 0; a < 3; ++a) {
+            float dLo = 1.0f / iv.rdHi[a], dHi = 1.0f / iv.rdLo[a];
+            spread = max(spread, dHi - dLo);
+            extent = max(extent, max(abs(dLo), abs(dHi)));
+        }
+        if (!(spread <= 0.1f * extent)) {
+            for (int s = 0; s < subCount; ++s) {
+                int n = count - s * K < K ? count - s * K : K;
+                tracePacket<N, K, AnyHit>(scene, rays + s * K, n, AnyHit ? nullptr : hitsOut + s * K,
+                                          AnyHit ? occludedOut + s * K : nullptr);
+            }
+            return;
+        }
         // Clamp infinite reciprocals (zero direction components) so that 0 * inf cannot appear.
         for (int a = 0; a < 3; ++a) {
             iv.rdLo[a] = max(iv.rdLo[a], -3.0e38f); iv.rdHi[a] = min(iv.rdHi[a], 3.0e38f);
