@@ -46,7 +46,17 @@ BuiltTracer build(const Scene& scene, const TriangleMesh& world, const TracerCon
     IsaKernelTable<N> table = kernelTable<N>(isa);
     KernelSet<N> coherent, incoherent;
     if (config.kernel == KernelChoice::Auto) {
+        // Camera rays share an origin, which is where interval culling shines; coherent shadow rays
+        // start on surfaces, where 256-ray packets can visit far more leaves than they hit (8x
+        // slower on the coffee maker, docs/performance-analysis.md), so they take 16-wide packets.
+        const KernelSet<N>& widest = table.packet16.intersect ? table.packet16
+                                   : table.packet8.intersect  ? table.packet8
+                                                              : table.packet4;
         coherent = table.packet256;
+        coherent.name = table.packet16.intersect ? "packet256+packet16"
+                        : table.packet8.intersect ? "packet256+packet8"
+                                                  : "packet256+packet4";
+        coherent.occluded = widest.occluded;
         incoherent = table.single;
     } else {
         coherent = incoherent = pickKernel(table, config.kernel, isa);
