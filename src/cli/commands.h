@@ -14,7 +14,7 @@ struct EngineOptions {
     std::string kernel = "auto";
     std::string isa = "auto";
     int bvhWidth = 8;
-    std::string shadowCache = "off";
+    std::string shadowCache = "on";
 };
 
 void addEngineOptions(CLI::App& app, EngineOptions& options);

@@ -20,7 +20,7 @@ void addEngineOptions(CLI::App& app, EngineOptions& options) {
         ->capture_default_str();
     app.add_option("--shadow-cache", options.shadowCache,
                    "Last-occluder cache per thread and recursion depth for incoherent shadow rays (single-ray "
-                   "kernel): on or off. Off by default: see docs/performance-analysis.md for when it pays")
+                   "kernel): on or off (see docs/performance-analysis.md for what it saves)")
         ->check(CLI::IsMember({"on", "off"}))
         ->capture_default_str();
     app.add_option("--bvh-width", options.bvhWidth, "Children per BVH node: 4 or 8")
