@@ -22,4 +22,12 @@ inline std::optional<std::filesystem::path> sharedScenesDir() {
     return dir;
 }
 
+/// The main file of each shared scene folder (see its README.txt), smallest first.
+inline constexpr const char* kSharedMeshes[] = {
+    "cornell-box/CornellBox-Original.obj", "suzanne/suzanne.obj",
+    "teapot/teapot.obj", "stanford-bunny/bun_zipper.ply",
+    "stanford-dragon-100k/dragon_100k.ply", "bitterli-coffee-maker/coffee_maker_merged.ply",
+    "crytek-sponza/sponza.obj", "bitterli-country-kitchen/country_kitchen_merged.ply",
+};
+
 } // namespace wideray

@@ -156,12 +156,7 @@ TEST_P(EmbreeCrosscheckShared, AgreesWithReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EmbreeRealMeshes, EmbreeCrosscheckShared,
-                         ::testing::Values("cornell-box/CornellBox-Original.obj", "suzanne/suzanne.obj",
-                                           "teapot/teapot.obj", "stanford-bunny/bun_zipper.ply",
-                                           "stanford-dragon-100k/dragon_100k.ply",
-                                           "bitterli-coffee-maker/coffee_maker_merged.ply",
-                                           "crytek-sponza/sponza.obj",
-                                           "bitterli-country-kitchen/country_kitchen_merged.ply"));
+                         ::testing::ValuesIn(kSharedMeshes));
 
 /// The default scene's sphere goes through Embree's user geometry callbacks; half the rays aim at it.
 TEST(EmbreeCrosscheck, UserGeometryMatchesOurs) {

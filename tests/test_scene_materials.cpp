@@ -10,6 +10,7 @@
 #include "core/image.h"
 #include "core/scene_parser.h"
 #include "shading/material_model.h"
+#include "temp_dir.h"
 
 namespace wideray {
 namespace {
@@ -44,21 +45,6 @@ void expectError(const std::string& text, const std::string& location, const std
 void expectMaterialError(const std::string& material, const std::string& location, const std::string& fragment) {
     expectError(sceneWithMaterial(material), "materials.m" + (location.empty() ? "" : "." + location), fragment);
 }
-
-class TempDir {
-public:
-    TempDir() {
-        const auto* test = testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::temp_directory_path() / ("wideray_" + std::string(test->name()) + "_" + std::to_string(::getpid()));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() { fs::remove_all(path_); }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
-};
 
 /// A 2x1 PNG, black on the left and white on the right.
 void writeBlackWhitePng(const fs::path& path) {

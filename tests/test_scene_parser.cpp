@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/mesh_generators.h"
 #include "core/scene_parser.h"
+#include "temp_dir.h"
 
 namespace wideray {
 namespace {
@@ -51,21 +52,6 @@ void writeFile(const fs::path& path, const std::string& text) {
     fs::create_directories(path.parent_path());
     std::ofstream(path) << text;
 }
-
-class TempDir {
-public:
-    TempDir() {
-        const auto* test = testing::UnitTest::GetInstance()->current_test_info();
-        path_ = fs::temp_directory_path() / ("wideray_" + std::string(test->name()) + "_" + std::to_string(::getpid()));
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~TempDir() { fs::remove_all(path_); }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
-};
 
 const char* kTriangleObj = "mtllib tri.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
                            "usemtl red\nf 1 2 3\nusemtl blue\nf 2 4 3\n";

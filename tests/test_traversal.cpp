@@ -69,12 +69,7 @@ TEST_P(SharedMeshTraversal, MatchesBruteForce) {
 }
 
 INSTANTIATE_TEST_SUITE_P(RealMeshes, SharedMeshTraversal,
-                         ::testing::Values("cornell-box/CornellBox-Original.obj", "suzanne/suzanne.obj",
-                                           "teapot/teapot.obj", "stanford-bunny/bun_zipper.ply",
-                                           "stanford-dragon-100k/dragon_100k.ply",
-                                           "bitterli-coffee-maker/coffee_maker_merged.ply",
-                                           "crytek-sponza/sponza.obj",
-                                           "bitterli-country-kitchen/country_kitchen_merged.ply"));
+                         ::testing::ValuesIn(kSharedMeshes));
 
 TEST(Traversal, InvalidRaysMissAndAreNotOccluded) {
     TriangleMesh mesh = makeIcosphere(2);
