@@ -28,7 +28,12 @@ void writeImage(const Image& image, const std::filesystem::path& path, bool srgb
     std::filesystem::path dir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
-    std::filesystem::path temp = dir / ("." + path.stem().string() + ".tmp" + std::to_string(getpid()) + ext);
+    // A hidden name in the same folder, so that the rename cannot cross file systems; it keeps the
+    // extension, which is how OpenImageIO picks the format.
+    std::string tempName = path.stem().string();
+    tempName.insert(0, 1, '.');
+    tempName += ".tmp" + std::to_string(getpid()) + ext;
+    std::filesystem::path temp = dir / tempName;
 
     auto out = OIIO::ImageOutput::create(temp.string());
     if (!out) throw InputError(file, "", "cannot write this image format: " + OIIO::geterror());
