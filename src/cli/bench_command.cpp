@@ -36,6 +36,7 @@ struct BenchArgs {
     std::string json;
     std::vector<std::string> kinds{"primary", "shadow", "diffuse"};
     bool allIsas = false;
+    std::string backend = "both";
 };
 
 /// One way of tracing a batch: closest hits (hits != null) or occlusion.
@@ -158,7 +159,7 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
     std::vector<EmbreeEntry> embree;
     for (EmbreeKernel k : {EmbreeKernel::Intersect1, EmbreeKernel::Packet4, EmbreeKernel::Packet8,
                            EmbreeKernel::Packet16, EmbreeKernel::Stream1M})
-        if (EmbreeTracer::supports(k))
+        if (args.backend != "wideray" && EmbreeTracer::supports(k))
             embree.push_back({k, std::make_shared<EmbreeTracer>(scene, world, EmbreeConfig{RTC_BUILD_QUALITY_MEDIUM, k, k})});
 
     TracerConfig referenceConfig;
@@ -166,8 +167,10 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
     BuiltTracer reference = buildWiderayTracer(scene, world, referenceConfig);
     BenchRays rays = makeBenchRays(scene, world, *reference.tracer, width, height);
 
-    std::vector<Candidate> candidates = ourCandidates(*accel, args.allIsas);
-    for (Candidate& c : embreeCandidates(embree)) candidates.push_back(std::move(c));
+    std::vector<Candidate> candidates;
+    if (args.backend != "embree") candidates = ourCandidates(*accel, args.allIsas);
+    if (args.backend != "wideray")
+        for (Candidate& c : embreeCandidates(embree)) candidates.push_back(std::move(c));
 
     fmt::print("\n{:<28} {:<8} {:<8} {:<15} {:<8} {:>10} {:>9} {:>10}\n", "scene", "rays", "backend", "kernel", "isa",
                "Mrays/s", "hits", "vs embree");
@@ -222,6 +225,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--rays", args->kinds, "Ray kinds: primary, shadow, diffuse")
         ->check(CLI::IsMember({"primary", "shadow", "diffuse"}))
         ->delimiter(',');
+    cmd->add_option("--backend", args->backend, "Whose kernels to measure: wideray, embree or both")
+        ->check(CLI::IsMember({"wideray", "embree", "both"}))
+        ->capture_default_str();
     cmd->add_flag("--all-isas", args->allIsas, "Measure our kernels for every ISA this CPU has, not only the best");
     cmd->add_option("--json", args->json, "Write the results as JSON (fields: machine, results, builds)");
     cmd->callback([args, &exitCode] {
