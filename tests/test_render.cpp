@@ -8,6 +8,7 @@
 #include "core/renderer.h"
 #include "core/scene_parser.h"
 #include "kernels/tracer_factory.h"
+#include "render_helpers.h"
 
 namespace wideray {
 namespace {
@@ -15,21 +16,11 @@ namespace {
 const std::filesystem::path kSourceDir = WIDERAY_SOURCE_DIR;
 
 Image renderDefault(int threads, Aov aov, int width, int height, RenderStats* statsOut = nullptr) {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    FlushToZeroScope ftz;
-    Scene scene = loadScene(kSourceDir / "scenes/default.json");
-    TriangleMesh world = flattenTriangles(scene);
-    TracerConfig config;
-    config.kernel = KernelChoice::Scalar;
-    BuiltTracer built = buildWiderayTracer(scene, world, config);
     RenderOptions options;
     options.width = width;
     options.height = height;
     options.aov = aov;
-    RenderStats stats;
-    Image image = render(scene, world, *built.tracer, options, stats);
-    if (statsOut) *statsOut = stats;
-    return image;
+    return renderWithReference(loadScene(kSourceDir / "scenes/default.json"), threads, options, statsOut);
 }
 
 TEST(Render, DefaultSceneIsIdenticalWithOneAndTwoThreads) {
@@ -96,7 +87,9 @@ TEST(Render, KernelsAndShadowCacheRenderTheReferenceImage) {
         BuiltTracer built = buildWiderayTracer(scene, world, config);
         RenderStats stats;
         Image image = render(scene, world, *built.tracer, options, stats);
-        if (cache) EXPECT_GT(built.tracer->shadowCacheStats().first, 0u) << "reflections cast cached shadow rays";
+        if (cache) {
+            EXPECT_GT(built.tracer->shadowCacheStats().first, 0u) << "reflections cast cached shadow rays";
+        }
         return image;
     };
     Image reference = renderWith(KernelChoice::Scalar, false);

@@ -14,6 +14,7 @@
 #include "core/scene_parser.h"
 #include "kernels/tracer_factory.h"
 #include "shading/fresnel.h"
+#include "render_helpers.h"
 
 namespace wideray {
 namespace {
@@ -22,17 +23,10 @@ const std::filesystem::path kSourceDir = WIDERAY_SOURCE_DIR;
 constexpr int kWidth = 80, kHeight = 60;
 
 Image renderScene(const Scene& scene, int threads, int width, int height) {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-    FlushToZeroScope ftz;
-    TriangleMesh world = flattenTriangles(scene);
-    TracerConfig config;
-    config.kernel = KernelChoice::Scalar;
-    BuiltTracer built = buildWiderayTracer(scene, world, config);
     RenderOptions options;
     options.width = width;
     options.height = height;
-    RenderStats stats;
-    return render(scene, world, *built.tracer, options, stats);
+    return renderWithReference(scene, threads, options);
 }
 
 class EffectScene : public testing::TestWithParam<std::string> {};
