@@ -1,5 +1,5 @@
 // Closest-hit traversal of an 8-wide BVH, one kernel at a time on one thread: the scalar reference
-// and every kernel of the best ISA this CPU has (single, packet4/8/16, stream), on the primary and
+// and every kernel of the best ISA this CPU has (single, packet4/8/16, stream, drst), on the primary and
 // diffuse rays of `wideray bench` (core/bench_rays.h) for the Stanford bunny, or a generated torus
 // when the shared meshes are absent.
 #include <benchmark/benchmark.h>
@@ -67,7 +67,7 @@ void traverse(benchmark::State& state, KernelSet<8> kernel, RayKind kind) {
         {{"scalar", &reference::intersect<8>, &reference::occluded<8>}, "scalar"}};
     Isa isa = bestIsa();
     IsaKernelTable<8> table = kernelTable<8>(isa);
-    for (const KernelSet<8>& k : {table.single, table.packet4, table.packet8, table.packet16, table.stream})
+    for (const KernelSet<8>& k : {table.single, table.packet4, table.packet8, table.packet16, table.stream, table.drst})
         if (k.intersect) kernels.push_back({k, std::string(k.name) + "_" + isaName(isa)});
     for (RayKind kind : {RayKind::Primary, RayKind::Diffuse})
         for (const auto& [kernel, name] : kernels)

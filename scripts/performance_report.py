@@ -18,7 +18,7 @@ from collections import OrderedDict
 from xml.sax.saxutils import escape
 
 RAY_KINDS = ("primary", "shadow", "diffuse")
-OUR_KERNELS = ("scalar", "single", "packet4", "packet8", "packet16", "packet256", "stream", "single+cache")
+OUR_KERNELS = ("scalar", "single", "packet4", "packet8", "packet16", "packet256", "stream", "drst", "single+cache")
 ANALYSIS_FILE = "performance-analysis.md"
 
 
@@ -54,7 +54,7 @@ def embree_counterpart(our_kernel, ray_kind):
     """The Embree entry point `wideray bench` compares one of our kernels with."""
     # packet256 has no Embree counterpart of its size: it is compared with Embree's widest packet.
     name = {"scalar": "rtcIntersect1", "single": "rtcIntersect1", "single+cache": "rtcIntersect1",
-            "packet256": "rtcIntersect16", "stream": "rtcIntersect1M"}.get(our_kernel)
+            "packet256": "rtcIntersect16", "stream": "rtcIntersect1M", "drst": "rtcIntersect1M"}.get(our_kernel)
     if name is None and our_kernel.startswith("packet"):
         name = "rtcIntersect" + our_kernel[len("packet"):]
     if name and ray_kind == "shadow":

@@ -48,7 +48,7 @@ std::vector<Isa> availableIsas() {
 template <int N>
 std::vector<KernelSet<N>> kernelsOf(const IsaKernelTable<N>& t) {
     std::vector<KernelSet<N>> all;
-    for (const KernelSet<N>& k : {t.single, t.packet4, t.packet8, t.packet16, t.packet256, t.stream})
+    for (const KernelSet<N>& k : {t.single, t.packet4, t.packet8, t.packet16, t.packet256, t.stream, t.drst})
         if (k.intersect) all.push_back(k);
     return all;
 }

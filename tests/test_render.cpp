@@ -93,7 +93,8 @@ TEST(Render, KernelsAndShadowCacheRenderTheReferenceImage) {
         return image;
     };
     Image reference = renderWith(KernelChoice::Scalar, false);
-    for (KernelChoice k : {KernelChoice::Auto, KernelChoice::Single, KernelChoice::Packet4, KernelChoice::Stream})
+    for (KernelChoice k : {KernelChoice::Auto, KernelChoice::Single, KernelChoice::Packet4, KernelChoice::Stream,
+                          KernelChoice::Drst})
         for (bool cache : {false, true}) {
             if (cache && k != KernelChoice::Auto && k != KernelChoice::Single) continue;
             EXPECT_TRUE(renderWith(k, cache).pixels == reference.pixels) << kernelName(k) << " cache " << cache;

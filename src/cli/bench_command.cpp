@@ -95,7 +95,8 @@ std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, bool allIsas) {
                                                                 {table.packet8, "rtcIntersect8"},
                                                                 {table.packet16, "rtcIntersect16"},
                                                                 {table.packet256, "rtcIntersect16"},
-                                                                {table.stream, "rtcIntersect1M"}};
+                                                                {table.stream, "rtcIntersect1M"},
+                                                                {table.drst, "rtcIntersect1M"}};
         // The shadow cache: one per task, so that each chunk of rays starts cold (as a renderer tile would).
         if (table.single.occludedCached)
             out.push_back({"wideray", "single+cache", isaName(isa), "rtcIntersect1",

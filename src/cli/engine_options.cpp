@@ -9,9 +9,9 @@ void addEngineOptions(CLI::App& app, EngineOptions& options) {
         ->check(CLI::Range(1, 4096));
     app.add_option("--kernel", options.kernel,
                    "Traversal kernel: scalar (the reference), single (one ray, SIMD across children), "
-                   "packet4, packet8, packet16, packet256 (256-ray packets with interval culling), stream, or "
-                   "auto (packets for coherent rays, the fastest measured kernel for incoherent ones)")
-        ->check(CLI::IsMember({"scalar", "single", "packet4", "packet8", "packet16", "packet256", "stream", "auto"}))
+                   "packet4, packet8, packet16, packet256 (256-ray packets with interval culling), stream, drst "
+                   "(streams in which each ray keeps its own order), or auto (packets for coherent rays, the fastest measured kernel for incoherent ones)")
+        ->check(CLI::IsMember({"scalar", "single", "packet4", "packet8", "packet16", "packet256", "stream", "drst", "auto"}))
         ->capture_default_str();
     app.add_option("--isa", options.isa,
                    "Instruction set of the kernels: sse42, avx2, avx512 or auto (the best this CPU has); "

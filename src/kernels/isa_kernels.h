@@ -12,7 +12,8 @@ struct IsaKernelTable {
     KernelSet<N> single;  ///< one ray at a time, SIMD across the N children and the M triangles of a block
     KernelSet<N> packet4, packet8, packet16;
     KernelSet<N> packet256;  ///< 256-ray packets with interval culling, sub-packets of the widest vector
-    KernelSet<N> stream;
+    KernelSet<N> stream;  ///< sorted ray streams, one list per child
+    KernelSet<N> drst;    ///< sorted ray streams, each ray in its own order (Dynamic Ray Stream Traversal)
 };
 
 template <int N> IsaKernelTable<N> sse42KernelTable();

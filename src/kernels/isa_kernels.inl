@@ -104,21 +104,21 @@ void largePacketOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* oc
 /// Streams of up to kStreamSize rays, SIMD across the widest vector of the ISA.
 constexpr size_t kStreamSize = 4096;
 
-template <int N>
+template <int N, StreamOrder Order>
 void streamIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
     if (costs) return singleIntersect<N>(scene, rays, hits, count, costs);
     StreamWorkspace& ws = StreamWorkspace::forThisThread();
     for (size_t i = 0; i < count; i += kStreamSize)
-        traceStream<N, kMaxWidth, false>(scene, rays + i, count - i < kStreamSize ? count - i : kStreamSize, hits + i,
-                                         nullptr, ws);
+        traceStream<N, kMaxWidth, false, Order>(scene, rays + i, count - i < kStreamSize ? count - i : kStreamSize,
+                                                hits + i, nullptr, ws);
 }
 
-template <int N>
+template <int N, StreamOrder Order>
 void streamOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count) {
     StreamWorkspace& ws = StreamWorkspace::forThisThread();
     for (size_t i = 0; i < count; i += kStreamSize)
-        traceStream<N, kMaxWidth, true>(scene, rays + i, count - i < kStreamSize ? count - i : kStreamSize, nullptr,
-                                        occluded + i, ws);
+        traceStream<N, kMaxWidth, true, Order>(scene, rays + i, count - i < kStreamSize ? count - i : kStreamSize,
+                                               nullptr, occluded + i, ws);
 }
 
 template <int N>
@@ -133,7 +133,8 @@ IsaKernelTable<N> makeTable() {
     t.packet16 = {"packet16", &packetIntersect<N, 16>, &packetOccluded<N, 16>};
 #endif
     t.packet256 = {"packet256", &largePacketIntersect<N>, &largePacketOccluded<N>};
-    t.stream = {"stream", &streamIntersect<N>, &streamOccluded<N>};
+    t.stream = {"stream", &streamIntersect<N, StreamOrder::ByList>, &streamOccluded<N, StreamOrder::ByList>};
+    t.drst = {"drst", &streamIntersect<N, StreamOrder::ByRay>, &streamOccluded<N, StreamOrder::ByRay>};
     return t;
 }
 

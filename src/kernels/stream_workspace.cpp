@@ -8,7 +8,7 @@
 namespace wideray {
 namespace {
 
-constexpr int kFloatArrays = 13, kIntArrays = 4;
+constexpr int kFloatArrays = 13, kIntArrays = 5;
 
 void* allocate(size_t bytes) {
     void* p = std::aligned_alloc(64, (bytes + 63) / 64 * 64);
@@ -21,6 +21,7 @@ void* allocate(size_t bytes) {
 StreamWorkspace::~StreamWorkspace() {
     std::free(ox);
     std::free(arena);
+    std::free(stack);
 }
 
 void StreamWorkspace::reserveRays(size_t n) {
@@ -34,7 +35,7 @@ void StreamWorkspace::reserveRays(size_t n) {
         *f = reinterpret_cast<float*>(block);
         block += stride * 4;
     }
-    for (int32_t** a : {&kx, &ky, &kz, &prim}) {
+    for (int32_t** a : {&kx, &ky, &kz, &prim, &visits}) {
         *a = reinterpret_cast<int32_t*>(block);
         block += stride * 4;
     }
@@ -54,6 +55,16 @@ void StreamWorkspace::reserveArena(size_t n) {
     std::free(arena);
     arena = bigger;
     arenaCapacity = grown;
+}
+
+void* StreamWorkspace::reserveStack(size_t bytes) {
+    if (bytes > stackBytes) {
+        void* bigger = allocate(bytes);
+        std::free(stack);
+        stack = bigger;
+        stackBytes = bytes;
+    }
+    return stack;
 }
 
 StreamWorkspace& StreamWorkspace::forThisThread() {

@@ -12,12 +12,15 @@ struct StreamWorkspace {
     float *ox = nullptr, *oy = nullptr, *oz = nullptr, *rdx = nullptr, *rdy = nullptr, *rdz = nullptr;
     float *tnear = nullptr, *tfar = nullptr, *sx = nullptr, *sy = nullptr, *sz = nullptr, *u = nullptr, *v = nullptr;
     int32_t *kx = nullptr, *ky = nullptr, *kz = nullptr, *prim = nullptr;
+    int32_t* visits = nullptr;  ///< per ray of the list being split: its children and their order
     uint32_t* rayOf = nullptr;  ///< stream slot -> index in the caller's array
     uint64_t* keys = nullptr;   ///< sort keys: (octant, Morton code) << 32 | ray index
     uint8_t* valid = nullptr;   ///< per ray of the caller's array: whether it is traced at all
     size_t capacity = 0;
     int32_t* arena = nullptr;   ///< the ray lists of the nodes waiting on the traversal stack
     size_t arenaCapacity = 0;
+    void* stack = nullptr;      ///< the traversal stack (its entry type belongs to the kernel)
+    size_t stackBytes = 0;
 
     StreamWorkspace() = default;
     StreamWorkspace(const StreamWorkspace&) = delete;
@@ -27,6 +30,8 @@ struct StreamWorkspace {
     void reserveRays(size_t n);
     /// Grows the arena to at least n entries, keeping its contents.
     void reserveArena(size_t n);
+    /// Grows the stack to at least `bytes` (its contents are not kept) and returns it.
+    void* reserveStack(size_t bytes);
 
     static StreamWorkspace& forThisThread();
 };

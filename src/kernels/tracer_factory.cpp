@@ -12,7 +12,8 @@ namespace {
 constexpr std::pair<KernelChoice, const char*> kKernelNames[] = {
     {KernelChoice::Scalar, "scalar"},   {KernelChoice::Single, "single"},   {KernelChoice::Packet4, "packet4"},
     {KernelChoice::Packet8, "packet8"},   {KernelChoice::Packet256, "packet256"},
-    {KernelChoice::Packet16, "packet16"}, {KernelChoice::Stream, "stream"}, {KernelChoice::Auto, "auto"}};
+    {KernelChoice::Packet16, "packet16"}, {KernelChoice::Stream, "stream"},
+    {KernelChoice::Drst, "drst"},         {KernelChoice::Auto, "auto"}};
 
 constexpr std::pair<Backend, const char*> kBackendNames[] = {{Backend::Wideray, "wideray"}, {Backend::Embree, "embree"}};
 
@@ -32,6 +33,7 @@ KernelSet<N> pickKernel(const IsaKernelTable<N>& table, KernelChoice choice, Isa
     case KernelChoice::Packet16: k = table.packet16; break;
     case KernelChoice::Packet256: k = table.packet256; break;
     case KernelChoice::Stream: k = table.stream; break;
+    case KernelChoice::Drst: k = table.drst; break;
     case KernelChoice::Auto: break;
     }
     if (!k.intersect)

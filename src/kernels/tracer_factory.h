@@ -19,9 +19,10 @@ const char* backendName(Backend b);
 std::optional<Backend> parseBackend(std::string_view name);
 
 /// scalar: the reference; single: one ray at a time with SIMD box and triangle tests; packetK: K rays
-/// at a time; packet256: 256-ray packets with interval culling; stream: sorted ray streams; auto:
-/// packets for coherent rays and the fastest measured kernel for incoherent ones.
-enum class KernelChoice { Scalar, Single, Packet4, Packet8, Packet16, Packet256, Stream, Auto };
+/// at a time; packet256: 256-ray packets with interval culling; stream: sorted ray streams; drst:
+/// sorted ray streams in which each ray keeps its own order; auto: packets for coherent rays and the
+/// fastest measured kernel for incoherent ones.
+enum class KernelChoice { Scalar, Single, Packet4, Packet8, Packet16, Packet256, Stream, Drst, Auto };
 
 const char* kernelName(KernelChoice k);
 std::optional<KernelChoice> parseKernel(std::string_view name);

@@ -3,9 +3,11 @@
 // Stream Traversal", and Wald et al. 2014, "Embree"). A stream of up to a few thousand rays is
 // sorted (direction octant, then a Morton code of the origin) and stored as structure of arrays.
 // It then walks the BVH as a list of ray indices: at each inner node the list is filtered against
-// every child box, K rays per SIMD test, into one list per child; leaves test K rays per triangle.
-// Each ray is culled against its own closest hit. Children are visited in the order of the nearest
-// entry among their rays. Triangle arithmetic is the reference's, lane by lane.
+// every child box, K rays per SIMD test, into lists for the children; leaves test K rays per
+// triangle. Each ray is culled against its own closest hit. Two orders (StreamOrder): one list per
+// child, children in the order of their nearest ray, or each ray in its own nearest-first order as
+// in Dynamic Ray Stream Traversal, which splits the lists finer. Triangle arithmetic is the
+// reference's, lane by lane.
 #include "kernels/stream_workspace.h"
 #include "kernels/traverse_packet.h"
 
@@ -119,98 +121,211 @@ inline vint<K> loadIndices(const int32_t* list, size_t count, vbool<K>& valid) {
     return select(valid, vint<K>::loadu(list), vint<K>(list[0]));
 }
 
+/// How the lists of a node's children are made and ordered.
+enum class StreamOrder {
+    ByList,  ///< one list per child; the lists in the order of the nearest entry among their rays
+    ByRay,   ///< Dynamic Ray Stream Traversal: every ray visits its children in its own nearest-first order
+};
+
+/// A list of rays waiting on the traversal stack for a node.
+struct StreamEntry {
+    NodeRef ref;
+    uint32_t begin, end;  ///< the list in the arena
+    uint32_t restoreTop;  ///< the arena's top once the list is taken off the stack
+    uint32_t recheck;     ///< parent * N + slot of a leaf that its rays reach after a nearer sibling
+};
+constexpr uint32_t kNoRecheck = ~0u;
+
+/// A node pushes at most N * N lists (ByRay: child x rank).
+template <int N>
+constexpr int kStreamStackSize = kMaxBvhDepth * N * N + 1;
+
+/// The rays of a leaf's list against its triangles, K at a time.
 template <int N, int K, bool AnyHit>
-inline void traceStreamTriangles(const TriangleBvhView<N>& tri, size_t n, StreamWorkspace& ws) {
+inline void traceStreamLeaf(const TriangleBvhView<N>& tri, const StreamEntry& e, StreamWorkspace& ws) {
+    using F = vfloat<K>;
+    const WideNode<N>* parent = e.recheck == kNoRecheck ? nullptr : &tri.nodes[e.recheck / N];
+    const int slot = int(e.recheck % N);
+    for (uint32_t at = e.begin; at < e.end; at += K) {
+        vbool<K> valid;
+        vint<K> idx = loadIndices<K>(&ws.arena[at], e.end - at, valid);
+        PacketRay<K> p;
+        PacketHit<K> h;
+        gatherPacket(ws, idx, p, h);
+        vbool<K> active = valid & (p.tnear <= h.t);
+        // A hit found under a nearer sibling may end the ray before this leaf.
+        if (parent && any(active)) {
+            classifyOctant(p, movemask(active));
+            active &= packetChildEntry<N, K>(*parent, slot, p, h.t, active) < F(__builtin_huge_valf());
+        }
+        if (none(active)) continue;
+        gatherWoop(ws, idx, p, h);
+        classifyAxes(p, movemask(active));
+        for (uint32_t b = e.ref.first(); b < e.ref.first() + e.ref.count(); ++b) {
+            vbool<K> hit = intersectBlockPacket<K, AnyHit>(tri.blocks[b], p, active, h);
+            if constexpr (AnyHit) {
+                h.t = select(hit, F(-__builtin_huge_valf()), h.t);
+                active = andNot(active, hit);
+            }
+        }
+        scatterHits<K>(ws, idx, h, movemask(valid));
+    }
+}
+
+/// The children of an inner node that exist, as slots.
+template <int N>
+inline int liveChildren(const WideNode<N>& node, int live[N]) {
+    int count = 0;
+    for (int i = 0; i < N; ++i)
+        if (node.child[i].bits != NodeRef::empty().bits) live[count++] = i;
+    return count;
+}
+
+/// Splits the list of an inner node into one list per child (each as large as the list plus K of
+/// slack for the vector loads of the next level) and pushes them farthest first. Returns how many.
+template <int N, int K>
+inline int splitByList(const TriangleBvhView<N>& tri, const StreamEntry& e, StreamWorkspace& ws, StreamEntry* push) {
     using F = vfloat<K>;
     const F inf(__builtin_huge_valf());
-    struct Entry {
-        NodeRef ref;
-        uint32_t begin, end, restoreTop;
-    };
-    Entry stack[kStackSize<N>];
+    const WideNode<N>& node = tri.nodes[e.ref.index()];
+    const uint32_t top = e.restoreTop, region = e.end - e.begin + K;
+    int live[N];
+    const int liveCount = liveChildren(node, live);
+    ws.reserveArena(top + liveCount * region + K);
+    uint32_t childEnd[N];
+    F closest[N];
+    for (int c = 0; c < liveCount; ++c) {
+        childEnd[c] = top + c * region;
+        closest[c] = inf;
+    }
+    for (uint32_t at = e.begin; at < e.end; at += K) {
+        vbool<K> valid;
+        vint<K> idx = loadIndices<K>(&ws.arena[at], e.end - at, valid);
+        PacketRay<K> p;
+        PacketHit<K> h;
+        gatherPacket(ws, idx, p, h);
+        vbool<K> active = valid & (p.tnear <= h.t);
+        classifyOctant(p, movemask(active));
+        for (int c = 0; c < liveCount; ++c) {
+            F dist = packetChildEntry<N, K>(node, live[c], p, h.t, active);
+            closest[c] = min(closest[c], dist);
+            childEnd[c] += uint32_t(compressStore(&ws.arena[childEnd[c]], idx, dist < inf));
+        }
+    }
+    // Sorted insert: farthest first, so that the nearest child is popped first.
+    float nearest[N];
+    int childCount = 0;
+    const uint32_t newTop = top + liveCount * region;
+    for (int c = 0; c < liveCount; ++c) {
+        uint32_t begin = top + c * region;
+        if (childEnd[c] == begin) continue;
+        float key = reduceMin(closest[c]);
+        int j = childCount++;
+        for (; j > 0 && nearest[j - 1] < key; --j) {
+            push[j] = push[j - 1];
+            nearest[j] = nearest[j - 1];
+        }
+        push[j] = {node.child[live[c]], begin, childEnd[c], newTop, kNoRecheck};
+        nearest[j] = key;
+    }
+    return childCount;
+}
+
+/// How a ray of the list being split visits the node's children, in 32 bits: bit i says that it
+/// enters child i, bits 8 + 3i .. 10 + 3i give child i's rank in the ray's nearest-first order.
+inline int visitRank(uint32_t visits, int child) { return int(visits >> (8 + 3 * child)) & 7; }
+
+/// Dynamic Ray Stream Traversal (Barringer and Akenine-Moller 2014) generalized to wide nodes: the
+/// list is split into one list per (child, rank of that child in the ray's nearest-first order),
+/// counted first so that the lists lie back to back, and pushed farthest rank first. Each ray thus
+/// finishes the subtree of its nearest child before any list holds it for its next.
+template <int N, int K>
+inline int splitByRay(const TriangleBvhView<N>& tri, const StreamEntry& e, StreamWorkspace& ws, StreamEntry* push) {
+    static_assert(N <= 8, "the visit code has room for eight children");
+    using F = vfloat<K>;
+    using I = vint<K>;
+    const F inf(__builtin_huge_valf());
+    const WideNode<N>& node = tri.nodes[e.ref.index()];
+    const uint32_t count = e.end - e.begin;
+    int live[N];
+    const int liveCount = liveChildren(node, live);
+    for (uint32_t at = e.begin; at < e.end; at += K) {
+        vbool<K> valid;
+        vint<K> idx = loadIndices<K>(&ws.arena[at], e.end - at, valid);
+        PacketRay<K> p;
+        PacketHit<K> h;
+        gatherPacket(ws, idx, p, h);
+        vbool<K> active = valid & (p.tnear <= h.t);
+        classifyOctant(p, movemask(active));
+        F dist[N];
+        for (int c = 0; c < liveCount; ++c) dist[c] = packetChildEntry<N, K>(node, live[c], p, h.t, active);
+        I visits(0);
+        for (int c = 0; c < liveCount; ++c) {
+            const vbool<K> enters = dist[c] < inf;
+            visits = visits + select(enters, I(1 << live[c]), I(0));
+            const I rankStep(int32_t(1u << (8 + 3 * live[c])));
+            for (int d = 0; d < liveCount; ++d) {
+                if (d == c) continue;
+                const vbool<K> nearer = d < c ? dist[d] <= dist[c] : dist[d] < dist[c];  // ties: lower slot first
+                visits = visits + select(enters & nearer, rankStep, I(0));
+            }
+        }
+        visits.store(&ws.visits[at - e.begin]);
+    }
+    uint32_t listSize[N * N] = {};  // [rank * N + slot]
+    for (uint32_t j = 0; j < count; ++j) {
+        const uint32_t v = uint32_t(ws.visits[j]);
+        for (uint32_t m = v & 0xFF; m; m &= m - 1) {
+            const int c = __builtin_ctz(m);
+            ++listSize[visitRank(v, c) * N + c];
+        }
+    }
+    uint32_t listBegin[N * N], cursor[N * N];
+    uint32_t newTop = e.restoreTop;
+    for (int l = 0; l < N * N; ++l) {
+        listBegin[l] = cursor[l] = newTop;
+        newTop += listSize[l];
+    }
+    ws.reserveArena(newTop + K);  // K of slack for the vector loads of the next level
+    for (uint32_t j = 0; j < count; ++j) {
+        const uint32_t v = uint32_t(ws.visits[j]);
+        const int32_t ray = ws.arena[e.begin + j];
+        for (uint32_t m = v & 0xFF; m; m &= m - 1) {
+            const int c = __builtin_ctz(m);
+            ws.arena[cursor[visitRank(v, c) * N + c]++] = ray;
+        }
+    }
+    int pushed = 0;
+    for (int rank = N - 1; rank >= 0; --rank) {
+        for (int c = N - 1; c >= 0; --c) {
+            const int l = rank * N + c;
+            if (listSize[l] == 0) continue;
+            const NodeRef child = node.child[c];
+            const bool recheck = rank > 0 && child.isLeaf();
+            push[pushed++] = {child, listBegin[l], listBegin[l] + listSize[l], newTop,
+                              recheck ? e.ref.index() * N + uint32_t(c) : kNoRecheck};
+        }
+    }
+    return pushed;
+}
+
+template <int N, int K, bool AnyHit, StreamOrder Order>
+inline void traceStreamTriangles(const TriangleBvhView<N>& tri, size_t n, StreamWorkspace& ws) {
+    auto* stack = static_cast<StreamEntry*>(ws.reserveStack(sizeof(StreamEntry) * kStreamStackSize<N>));
     int sp = 0;
     ws.reserveArena(n + K);
     for (size_t i = 0; i < n; ++i) ws.arena[i] = int32_t(i);
-    stack[sp++] = {tri.root, 0, uint32_t(n), uint32_t(n)};
+    stack[sp++] = {tri.root, 0, uint32_t(n), uint32_t(n), kNoRecheck};
     while (sp > 0) {
-        Entry e = stack[--sp];
-        uint32_t top = e.restoreTop;
-        if (e.ref.isLeaf()) {
-            for (uint32_t at = e.begin; at < e.end; at += K) {
-                vbool<K> valid;
-                vint<K> idx = loadIndices<K>(&ws.arena[at], e.end - at, valid);
-                PacketRay<K> p;
-                PacketHit<K> h;
-                gatherPacket(ws, idx, p, h);
-                gatherWoop(ws, idx, p, h);
-                vbool<K> active = valid & (p.tnear <= h.t);
-                if (none(active)) continue;
-                classifyAxes(p, movemask(active));
-                for (uint32_t b = e.ref.first(); b < e.ref.first() + e.ref.count(); ++b) {
-                    vbool<K> hit = intersectBlockPacket<K, AnyHit>(tri.blocks[b], p, active, h);
-                    if constexpr (AnyHit) {
-                        h.t = select(hit, F(-__builtin_huge_valf()), h.t);
-                        active = andNot(active, hit);
-                    }
-                }
-                scatterHits<K>(ws, idx, h, movemask(valid));
-            }
-            continue;
-        }
-        // Filter the list against all children at once: each child gets a region of the arena as
-        // large as the list (plus K of slack for the vector loads of the next level).
-        const WideNode<N>& node = tri.nodes[e.ref.index()];
-        const uint32_t count = e.end - e.begin, region = count + K;
-        int live[N], liveCount = 0;
-        for (int i = 0; i < N; ++i)
-            if (node.child[i].bits != NodeRef::empty().bits) live[liveCount++] = i;
-        ws.reserveArena(top + liveCount * region + K);
-        uint32_t childEnd[N];
-        F closest[N];
-        for (int c = 0; c < liveCount; ++c) {
-            childEnd[c] = top + c * region;
-            closest[c] = inf;
-        }
-        for (uint32_t at = e.begin; at < e.end; at += K) {
-            vbool<K> valid;
-            vint<K> idx = loadIndices<K>(&ws.arena[at], e.end - at, valid);
-            PacketRay<K> p;
-            PacketHit<K> h;
-            gatherPacket(ws, idx, p, h);
-            vbool<K> active = valid & (p.tnear <= h.t);
-            classifyOctant(p, movemask(active));
-            for (int c = 0; c < liveCount; ++c) {
-                F dist = packetChildEntry<N, K>(node, live[c], p, h.t, active);
-                closest[c] = min(closest[c], dist);
-                childEnd[c] += uint32_t(compressStore(&ws.arena[childEnd[c]], idx, dist < inf));
-            }
-        }
-        // Sorted insert: farthest first, so that the nearest child is popped first.
-        Entry children[N];
-        float nearest[N];
-        int childCount = 0;
-        for (int c = 0; c < liveCount; ++c) {
-            uint32_t begin = top + c * region;
-            if (childEnd[c] == begin) continue;
-            float key = reduceMin(closest[c]);
-            int j = childCount++;
-            for (; j > 0 && nearest[j - 1] < key; --j) {
-                children[j] = children[j - 1];
-                nearest[j] = nearest[j - 1];
-            }
-            children[j] = {node.child[live[c]], begin, childEnd[c], 0};
-            nearest[j] = key;
-        }
-        const uint32_t newTop = top + liveCount * region;
-        for (int c = 0; c < childCount; ++c) {
-            children[c].restoreTop = newTop;
-            stack[sp++] = children[c];
-        }
+        const StreamEntry e = stack[--sp];
+        if (e.ref.isLeaf()) traceStreamLeaf<N, K, AnyHit>(tri, e, ws);
+        else if constexpr (Order == StreamOrder::ByList) sp += splitByList<N, K>(tri, e, ws, stack + sp);
+        else sp += splitByRay<N, K>(tri, e, ws, stack + sp);
     }
 }
 
 /// Closest hits (AnyHit = false) or occlusion of `count` rays as one stream.
-template <int N, int K, bool AnyHit>
+template <int N, int K, bool AnyHit, StreamOrder Order>
 inline void traceStream(const SceneView<N>& scene, const Ray* rays, size_t count, Hit* hitsOut, uint8_t* occludedOut,
                         StreamWorkspace& ws) {
     for (size_t i = 0; i < count; ++i) {
@@ -219,7 +334,7 @@ inline void traceStream(const SceneView<N>& scene, const Ray* rays, size_t count
     }
     size_t n = loadStream<K>(rays, count, ws);
     if (n == 0) return;
-    if (scene.triangles.blocks) traceStreamTriangles<N, K, AnyHit>(scene.triangles, n, ws);
+    if (scene.triangles.blocks) traceStreamTriangles<N, K, AnyHit, Order>(scene.triangles, n, ws);
     for (size_t s = 0; s < n; ++s) {
         uint32_t i = ws.rayOf[s];
         const Ray& ray = rays[i];
