@@ -225,9 +225,11 @@ inline int splitByList(const TriangleBvhView<N>& tri, const StreamEntry& e, Stre
             push[j] = push[j - 1];
             nearest[j] = nearest[j - 1];
         }
-        push[j] = {node.child[live[c]], begin, childEnd[c], newTop, kNoRecheck};
+        const NodeRef child = node.child[live[c]];
+        push[j] = {child, begin, childEnd[c], newTop, child.isLeaf() ? e.ref.index() * N + uint32_t(live[c]) : kNoRecheck};
         nearest[j] = key;
     }
+    if (childCount > 0) push[childCount - 1].recheck = kNoRecheck;  // popped first: nothing has moved
     return childCount;
 }
 
