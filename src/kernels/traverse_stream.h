@@ -82,24 +82,54 @@ inline size_t loadStream(const Ray* rays, size_t count, StreamWorkspace& ws) {
     return n;
 }
 
-/// The rays of list[0..K) (fewer at the end: `valid` marks the real ones) gathered into a packet.
+/// K entries of a list of ray indices (fewer at its end: `valid` marks the real ones).
 template <int K>
-inline void gatherPacket(const StreamWorkspace& ws, const vint<K>& idx, PacketRay<K>& p, PacketHit<K>& h) {
-    using F = vfloat<K>;
-    p.ox = gather(ws.ox, idx); p.oy = gather(ws.oy, idx); p.oz = gather(ws.oz, idx);
-    p.rdx = gather(ws.rdx, idx); p.rdy = gather(ws.rdy, idx); p.rdz = gather(ws.rdz, idx);
-    p.negX = p.rdx < F(0.0f); p.negY = p.rdy < F(0.0f); p.negZ = p.rdz < F(0.0f);
-    p.tnear = gather(ws.tnear, idx);
-    h.t = gather(ws.tfar, idx);
+struct ListChunk {
+    vint<K> idx;
+    vbool<K> valid;
+    int32_t first;
+    bool contiguous;  ///< idx = first, first + 1, ...: the rays' data is read by plain loads
+
+    vfloat<K> fetch(const float* array) const {
+        return contiguous ? vfloat<K>::loadu(array + first) : gather(array, idx);
+    }
+    vint<K> fetch(const int32_t* array) const {
+        return contiguous ? vint<K>::loadu(array + first) : gather(array, idx);
+    }
+};
+
+/// Loads K entries of a list that has `count` left. Lists are strictly increasing (they are made
+/// by scanning their parent list in order), so a run of K consecutive indices is told by its ends.
+template <int K>
+inline ListChunk<K> loadChunk(const int32_t* list, size_t count) {
+    alignas(64) static constexpr int32_t kLane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    ListChunk<K> c;
+    c.valid = vint<K>::load(kLane) < vint<K>(int32_t(count < size_t(K) ? count : size_t(K)));
+    c.idx = select(c.valid, vint<K>::loadu(list), vint<K>(list[0]));
+    c.first = list[0];
+    c.contiguous = count >= size_t(K) && list[K - 1] - list[0] == K - 1;
+    return c;
 }
 
+/// The rays of a chunk as a packet, for box tests.
 template <int K>
-inline void gatherWoop(const StreamWorkspace& ws, const vint<K>& idx, PacketRay<K>& p, PacketHit<K>& h) {
+inline void gatherPacket(const StreamWorkspace& ws, const ListChunk<K>& c, PacketRay<K>& p, PacketHit<K>& h) {
+    using F = vfloat<K>;
+    p.ox = c.fetch(ws.ox); p.oy = c.fetch(ws.oy); p.oz = c.fetch(ws.oz);
+    p.rdx = c.fetch(ws.rdx); p.rdy = c.fetch(ws.rdy); p.rdz = c.fetch(ws.rdz);
+    p.negX = p.rdx < F(0.0f); p.negY = p.rdy < F(0.0f); p.negZ = p.rdz < F(0.0f);
+    p.tnear = c.fetch(ws.tnear);
+    h.t = c.fetch(ws.tfar);
+}
+
+/// The rest of what the triangle test needs.
+template <int K>
+inline void gatherWoop(const StreamWorkspace& ws, const ListChunk<K>& c, PacketRay<K>& p, PacketHit<K>& h) {
     p.woop.ox = p.ox; p.woop.oy = p.oy; p.woop.oz = p.oz;
-    p.woop.kx = gather(ws.kx, idx); p.woop.ky = gather(ws.ky, idx); p.woop.kz = gather(ws.kz, idx);
-    p.woop.sx = gather(ws.sx, idx); p.woop.sy = gather(ws.sy, idx); p.woop.sz = gather(ws.sz, idx);
-    h.u = gather(ws.u, idx); h.v = gather(ws.v, idx);
-    h.primId = gather(ws.prim, idx);
+    p.woop.kx = c.fetch(ws.kx); p.woop.ky = c.fetch(ws.ky); p.woop.kz = c.fetch(ws.kz);
+    p.woop.sx = c.fetch(ws.sx); p.woop.sy = c.fetch(ws.sy); p.woop.sz = c.fetch(ws.sz);
+    h.u = c.fetch(ws.u); h.v = c.fetch(ws.v);
+    h.primId = c.fetch(ws.prim);
 }
 
 template <int K>
@@ -111,14 +141,6 @@ inline void scatterHits(StreamWorkspace& ws, const vint<K>& idx, const PacketHit
         int l = __builtin_ctz(lanes);
         ws.tfar[i[l]] = t[l]; ws.u[i[l]] = u[l]; ws.v[i[l]] = v[l]; ws.prim[i[l]] = prim[l];
     }
-}
-
-/// Loads K indices of a list that has `count` left; lanes past its end are not valid.
-template <int K>
-inline vint<K> loadIndices(const int32_t* list, size_t count, vbool<K>& valid) {
-    alignas(64) static constexpr int32_t kLane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
-    valid = vint<K>::load(kLane) < vint<K>(int32_t(count < size_t(K) ? count : size_t(K)));
-    return select(valid, vint<K>::loadu(list), vint<K>(list[0]));
 }
 
 /// How the lists of a node's children are made and ordered.
@@ -147,19 +169,18 @@ inline void traceStreamLeaf(const TriangleBvhView<N>& tri, const StreamEntry& e,
     const WideNode<N>* parent = e.recheck == kNoRecheck ? nullptr : &tri.nodes[e.recheck / N];
     const int slot = int(e.recheck % N);
     for (uint32_t at = e.begin; at < e.end; at += K) {
-        vbool<K> valid;
-        vint<K> idx = loadIndices<K>(&ws.arena[at], e.end - at, valid);
+        const ListChunk<K> chunk = loadChunk<K>(&ws.arena[at], e.end - at);
         PacketRay<K> p;
         PacketHit<K> h;
-        gatherPacket(ws, idx, p, h);
-        vbool<K> active = valid & (p.tnear <= h.t);
+        gatherPacket(ws, chunk, p, h);
+        vbool<K> active = chunk.valid & (p.tnear <= h.t);
         // A hit found under a nearer sibling may end the ray before this leaf.
         if (parent && any(active)) {
             classifyOctant(p, movemask(active));
             active &= packetChildEntry<N, K>(*parent, slot, p, h.t, active) < F(__builtin_huge_valf());
         }
         if (none(active)) continue;
-        gatherWoop(ws, idx, p, h);
+        gatherWoop(ws, chunk, p, h);
         classifyAxes(p, movemask(active));
         for (uint32_t b = e.ref.first(); b < e.ref.first() + e.ref.count(); ++b) {
             vbool<K> hit = intersectBlockPacket<K, AnyHit>(tri.blocks[b], p, active, h);
@@ -168,7 +189,7 @@ inline void traceStreamLeaf(const TriangleBvhView<N>& tri, const StreamEntry& e,
                 active = andNot(active, hit);
             }
         }
-        scatterHits<K>(ws, idx, h, movemask(valid));
+        scatterHits<K>(ws, chunk.idx, h, movemask(chunk.valid));
     }
 }
 
@@ -199,17 +220,16 @@ inline int splitByList(const TriangleBvhView<N>& tri, const StreamEntry& e, Stre
         closest[c] = inf;
     }
     for (uint32_t at = e.begin; at < e.end; at += K) {
-        vbool<K> valid;
-        vint<K> idx = loadIndices<K>(&ws.arena[at], e.end - at, valid);
+        const ListChunk<K> chunk = loadChunk<K>(&ws.arena[at], e.end - at);
         PacketRay<K> p;
         PacketHit<K> h;
-        gatherPacket(ws, idx, p, h);
-        vbool<K> active = valid & (p.tnear <= h.t);
+        gatherPacket(ws, chunk, p, h);
+        vbool<K> active = chunk.valid & (p.tnear <= h.t);
         classifyOctant(p, movemask(active));
         for (int c = 0; c < liveCount; ++c) {
             F dist = packetChildEntry<N, K>(node, live[c], p, h.t, active);
             closest[c] = min(closest[c], dist);
-            childEnd[c] += uint32_t(compressStore(&ws.arena[childEnd[c]], idx, dist < inf));
+            childEnd[c] += uint32_t(compressStore(&ws.arena[childEnd[c]], chunk.idx, dist < inf));
         }
     }
     // Sorted insert: farthest first, so that the nearest child is popped first.
@@ -252,12 +272,11 @@ inline int splitByRay(const TriangleBvhView<N>& tri, const StreamEntry& e, Strea
     int live[N];
     const int liveCount = liveChildren(node, live);
     for (uint32_t at = e.begin; at < e.end; at += K) {
-        vbool<K> valid;
-        vint<K> idx = loadIndices<K>(&ws.arena[at], e.end - at, valid);
+        const ListChunk<K> chunk = loadChunk<K>(&ws.arena[at], e.end - at);
         PacketRay<K> p;
         PacketHit<K> h;
-        gatherPacket(ws, idx, p, h);
-        vbool<K> active = valid & (p.tnear <= h.t);
+        gatherPacket(ws, chunk, p, h);
+        vbool<K> active = chunk.valid & (p.tnear <= h.t);
         classifyOctant(p, movemask(active));
         F dist[N];
         for (int c = 0; c < liveCount; ++c) dist[c] = packetChildEntry<N, K>(node, live[c], p, h.t, active);
