@@ -239,13 +239,17 @@ inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, H
             while (!ref.isLeaf()) {
                 const WideNode<N>& node = tri.nodes[ref.index()];
                 // Insert the hit children into the stack sorted by their nearest ray's entry,
-                // farthest first, then continue with the nearest.
+                // farthest first, then continue with the nearest (closest hit only).
                 float order[N];
                 const int base = sp;
                 for (int i = 0; i < N; ++i) {
                     if (node.child[i].bits == NodeRef::empty().bits) continue;
                     F dist = packetChildEntry<N, K>(node, i, p, h.t, active);
                     if (none(dist < inf)) continue;
+                    if constexpr (AnyHit) {  // any occluder will do: no order to keep
+                        stack[sp++] = {dist, node.child[i]};
+                        continue;
+                    }
                     float key = reduceMin(dist);
                     int j = sp++;
                     for (; j > base && order[j - 1 - base] < key; --j) {
