@@ -202,6 +202,18 @@ inline int liveChildren(const WideNode<N>& node, int live[N]) {
     return count;
 }
 
+/// Entry distances of the rays of a chunk into the node's live children (+inf: not entered).
+template <int N, int K>
+inline void childEntries(const WideNode<N>& node, const int* live, int liveCount, const StreamWorkspace& ws,
+                         const ListChunk<K>& chunk, vfloat<K>* dist) {
+    PacketRay<K> p;
+    PacketHit<K> h;
+    gatherPacket(ws, chunk, p, h);
+    const vbool<K> active = chunk.valid & (p.tnear <= h.t);
+    classifyOctant(p, movemask(active));
+    for (int c = 0; c < liveCount; ++c) dist[c] = packetChildEntry<N, K>(node, live[c], p, h.t, active);
+}
+
 /// Splits the list of an inner node into one list per child (each as large as the list plus K of
 /// slack for the vector loads of the next level) and pushes them farthest first. Returns how many.
 template <int N, int K>
@@ -221,15 +233,11 @@ inline int splitByList(const TriangleBvhView<N>& tri, const StreamEntry& e, Stre
     }
     for (uint32_t at = e.begin; at < e.end; at += K) {
         const ListChunk<K> chunk = loadChunk<K>(&ws.arena[at], e.end - at);
-        PacketRay<K> p;
-        PacketHit<K> h;
-        gatherPacket(ws, chunk, p, h);
-        vbool<K> active = chunk.valid & (p.tnear <= h.t);
-        classifyOctant(p, movemask(active));
+        F dist[N];
+        childEntries<N, K>(node, live, liveCount, ws, chunk, dist);
         for (int c = 0; c < liveCount; ++c) {
-            F dist = packetChildEntry<N, K>(node, live[c], p, h.t, active);
-            closest[c] = min(closest[c], dist);
-            childEnd[c] += uint32_t(compressStore(&ws.arena[childEnd[c]], chunk.idx, dist < inf));
+            closest[c] = min(closest[c], dist[c]);
+            childEnd[c] += uint32_t(compressStore(&ws.arena[childEnd[c]], chunk.idx, dist[c] < inf));
         }
     }
     // Sorted insert: farthest first, so that the nearest child is popped first.
@@ -273,13 +281,8 @@ inline int splitByRay(const TriangleBvhView<N>& tri, const StreamEntry& e, Strea
     const int liveCount = liveChildren(node, live);
     for (uint32_t at = e.begin; at < e.end; at += K) {
         const ListChunk<K> chunk = loadChunk<K>(&ws.arena[at], e.end - at);
-        PacketRay<K> p;
-        PacketHit<K> h;
-        gatherPacket(ws, chunk, p, h);
-        vbool<K> active = chunk.valid & (p.tnear <= h.t);
-        classifyOctant(p, movemask(active));
         F dist[N];
-        for (int c = 0; c < liveCount; ++c) dist[c] = packetChildEntry<N, K>(node, live[c], p, h.t, active);
+        childEntries<N, K>(node, live, liveCount, ws, chunk, dist);
         I visits(0);
         for (int c = 0; c < liveCount; ++c) {
             const vbool<K> enters = dist[c] < inf;
