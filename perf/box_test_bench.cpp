@@ -31,11 +31,7 @@ std::vector<WideNode<N>> randomNodes(RandomFloats& random) {
 /// children are hit.
 std::vector<BoxRay> randomBoxRays(RandomFloats& random) {
     std::vector<BoxRay> rays;
-    for (size_t i = 0; i < kCount; ++i) {
-        glm::vec3 o = 4.0f * glm::normalize(glm::vec3(random(-1, 1), random(-1, 1), random(-1, 1)));
-        glm::vec3 d = glm::vec3(random(-0.5f, 0.5f), random(-0.5f, 0.5f), random(-0.5f, 0.5f)) - o;
-        rays.push_back(makeBoxRay(o.x, o.y, o.z, d.x, d.y, d.z));
-    }
+    for (const Ray& r : raysIntoCube(random, kCount, 0.5f)) rays.push_back(makeBoxRay(r.ox, r.oy, r.oz, r.dx, r.dy, r.dz));
     return rays;
 }
 

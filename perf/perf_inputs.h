@@ -8,9 +8,13 @@
 #include <random>
 #include <string>
 #include <system_error>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "core/mesh.h"
 #include "core/mesh_io.h"
+#include "core/ray.h"
 #include "core/scene.h"
 #include "test_data.h"
 
@@ -42,5 +46,16 @@ struct RandomFloats {
     std::mt19937 engine{12345};
     float operator()(float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(engine); }
 };
+
+/// Rays from a sphere of radius 4 about the origin toward random points of the cube [-spread, spread]^3.
+inline std::vector<Ray> raysIntoCube(RandomFloats& random, size_t count, float spread) {
+    std::vector<Ray> rays;
+    for (size_t i = 0; i < count; ++i) {
+        glm::vec3 o = 4.0f * glm::normalize(glm::vec3(random(-1, 1), random(-1, 1), random(-1, 1)));
+        glm::vec3 d = glm::vec3(random(-spread, spread), random(-spread, spread), random(-spread, spread)) - o;
+        rays.push_back({o.x, o.y, o.z, d.x, d.y, d.z, 0.0f, __builtin_huge_valf()});
+    }
+    return rays;
+}
 
 } // namespace wideray::perf

@@ -34,15 +34,7 @@ Triangles randomTriangles(RandomFloats& random) {
     return t;
 }
 
-std::vector<Ray> randomRays(RandomFloats& random) {
-    std::vector<Ray> rays;
-    for (size_t i = 0; i < kCount; ++i) {
-        glm::vec3 o = 4.0f * glm::normalize(glm::vec3(random(-1, 1), random(-1, 1), random(-1, 1)));
-        glm::vec3 d = glm::vec3(random(-0.3f, 0.3f), random(-0.3f, 0.3f), random(-0.3f, 0.3f)) - o;
-        rays.push_back({o.x, o.y, o.z, d.x, d.y, d.z, 0.0f, std::numeric_limits<float>::infinity()});
-    }
-    return rays;
-}
+std::vector<Ray> randomRays(RandomFloats& random) { return raysIntoCube(random, kCount, 0.3f); }
 
 /// Rays i*K .. i*K+K-1 as one K-wide watertight ray (K = 1: plain floats).
 template <int K>
