@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "core/mesh_generators.h"
-#include "core/scene_accel.h"
+#include "io/mesh_generators.h"
+#include "accel/scene_accel.h"
 #include "perf_inputs.h"
 
 namespace wideray::perf {

@@ -13,7 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "core/mesh.h"
-#include "core/mesh_io.h"
+#include "io/mesh_io.h"
 #include "core/ray.h"
 #include "core/scene.h"
 #include "test_data.h"

@@ -8,14 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "core/bench_rays.h"
+#include "render/bench_rays.h"
 #include "core/fp_mode.h"
-#include "core/mesh_framing.h"
-#include "core/mesh_generators.h"
-#include "core/scene_accel.h"
+#include "io/mesh_framing.h"
+#include "io/mesh_generators.h"
+#include "accel/scene_accel.h"
 #include "kernels/isa_kernels.h"
 #include "kernels/reference_kernel.h"
-#include "kernels/tracer_factory.h"
+#include "backends/tracer_factory.h"
 #include "perf_inputs.h"
 
 namespace wideray::perf {

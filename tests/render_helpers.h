@@ -3,8 +3,8 @@
 #include <tbb/global_control.h>
 
 #include "core/fp_mode.h"
-#include "core/renderer.h"
-#include "kernels/tracer_factory.h"
+#include "render/renderer.h"
+#include "backends/tracer_factory.h"
 
 namespace wideray {
 

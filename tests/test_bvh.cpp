@@ -5,10 +5,10 @@
 #include <cstring>
 #include <functional>
 
-#include "core/bvh_stats.h"
-#include "core/mesh_generators.h"
-#include "core/mesh_io.h"
-#include "core/scene_accel.h"
+#include "accel/bvh_stats.h"
+#include "io/mesh_generators.h"
+#include "io/mesh_io.h"
+#include "accel/scene_accel.h"
 #include "test_data.h"
 
 namespace wideray {

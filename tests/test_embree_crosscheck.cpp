@@ -9,12 +9,12 @@
 #include <tbb/parallel_for.h>
 
 #include "core/fp_mode.h"
-#include "core/mesh_generators.h"
-#include "core/mesh_io.h"
-#include "core/renderer.h"
-#include "core/scene_parser.h"
-#include "kernels/embree_tracer.h"
-#include "kernels/tracer_factory.h"
+#include "io/mesh_generators.h"
+#include "io/mesh_io.h"
+#include "render/renderer.h"
+#include "io/scene_parser.h"
+#include "backends/embree_tracer.h"
+#include "backends/tracer_factory.h"
 #include "ray_sets.h"
 #include "test_data.h"
 

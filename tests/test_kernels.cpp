@@ -5,13 +5,13 @@
 
 #include <cstring>
 
-#include "core/bench_rays.h"
+#include "render/bench_rays.h"
 #include "core/fp_mode.h"
-#include "core/mesh_framing.h"
-#include "core/mesh_generators.h"
-#include "core/mesh_io.h"
-#include "core/scene_accel.h"
-#include "core/sphere_geometry.h"
+#include "io/mesh_framing.h"
+#include "io/mesh_generators.h"
+#include "io/mesh_io.h"
+#include "accel/scene_accel.h"
+#include "geometry/sphere_geometry.h"
 #include "kernels/isa_kernels.h"
 #include "kernels/reference_kernel.h"
 #include "ray_sets.h"

@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "core/mesh_io.h"
+#include "io/mesh_io.h"
 #include "test_data.h"
 
 namespace wideray {

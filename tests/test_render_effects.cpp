@@ -9,10 +9,10 @@
 #include <tbb/global_control.h>
 
 #include "core/fp_mode.h"
-#include "core/image.h"
-#include "core/renderer.h"
-#include "core/scene_parser.h"
-#include "kernels/tracer_factory.h"
+#include "io/image_io.h"
+#include "render/renderer.h"
+#include "io/scene_parser.h"
+#include "backends/tracer_factory.h"
 #include "shading/fresnel.h"
 #include "render_helpers.h"
 

@@ -7,8 +7,8 @@
 #include <unistd.h>
 
 #include "core/error.h"
-#include "core/image.h"
-#include "core/scene_parser.h"
+#include "io/image_io.h"
+#include "io/scene_parser.h"
 #include "shading/material_model.h"
 #include "temp_dir.h"
 

@@ -11,8 +11,8 @@
 #include <unistd.h>
 
 #include "core/error.h"
-#include "core/mesh_generators.h"
-#include "core/scene_parser.h"
+#include "io/mesh_generators.h"
+#include "io/scene_parser.h"
 #include "temp_dir.h"
 
 namespace wideray {

@@ -4,9 +4,9 @@
 #include <tbb/parallel_for.h>
 
 #include "core/fp_mode.h"
-#include "core/mesh_generators.h"
-#include "core/mesh_io.h"
-#include "core/scene_accel.h"
+#include "io/mesh_generators.h"
+#include "io/mesh_io.h"
+#include "accel/scene_accel.h"
 #include "kernels/reference_kernel.h"
 #include "ray_sets.h"
 #include "test_data.h"

@@ -3,8 +3,8 @@
 
 #include <random>
 
-#include "core/mesh_generators.h"
-#include "core/scene_accel.h"
+#include "io/mesh_generators.h"
+#include "accel/scene_accel.h"
 #include "kernels/reference_kernel.h"
 
 namespace wideray {

@@ -13,15 +13,15 @@
 #include <tbb/parallel_for.h>
 
 #include "cli/commands.h"
-#include "core/bench_rays.h"
+#include "render/bench_rays.h"
 #include "core/error.h"
 #include "core/fp_mode.h"
-#include "core/mesh_framing.h"
-#include "core/scene_accel.h"
-#include "kernels/embree_tracer.h"
+#include "io/mesh_framing.h"
+#include "accel/scene_accel.h"
+#include "backends/embree_tracer.h"
 #include "kernels/isa_kernels.h"
 #include "kernels/reference_kernel.h"
-#include "kernels/tracer_factory.h"
+#include "backends/tracer_factory.h"
 
 namespace wideray::cli {
 namespace {

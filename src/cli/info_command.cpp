@@ -5,11 +5,11 @@
 #include <fmt/core.h>
 
 #include "cli/commands.h"
-#include "core/bvh_stats.h"
+#include "accel/bvh_stats.h"
 #include "core/fp_mode.h"
-#include "core/mesh_framing.h"
-#include "core/scene_accel.h"
-#include "kernels/tracer_factory.h"
+#include "io/mesh_framing.h"
+#include "accel/scene_accel.h"
+#include "backends/tracer_factory.h"
 
 namespace wideray::cli {
 namespace {

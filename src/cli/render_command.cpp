@@ -9,12 +9,13 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
-#include "core/image_difference.h"
+#include "render/image_difference.h"
 #include "core/fp_mode.h"
-#include "core/mesh_framing.h"
-#include "core/renderer.h"
-#include "kernels/embree_tracer.h"
-#include "kernels/tracer_factory.h"
+#include "io/mesh_framing.h"
+#include "io/image_io.h"
+#include "render/renderer.h"
+#include "backends/embree_tracer.h"
+#include "backends/tracer_factory.h"
 
 namespace wideray::cli {
 namespace {

@@ -10,7 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "core/mesh.h"
-#include "shading/texture.h"
+#include "core/texture.h"
 
 namespace wideray {
 

@@ -3,7 +3,7 @@
 // reciprocal direction precomputed once per ray and near/far planes chosen once from its signs.
 #include <cstdint>
 
-#include "core/wide_bvh.h"
+#include "accel/wide_bvh.h"
 #include "simd/simd.h"
 
 #include "simd/isa_namespace.h"

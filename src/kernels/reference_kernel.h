@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/bvh_view.h"
+#include "accel/bvh_view.h"
 #include "core/ray.h"
 
 namespace wideray::reference {

@@ -4,7 +4,7 @@
 // reference; NodeW = N and TriW = kBlockSize give the same answers with SIMD box and triangle tests.
 #include <cstdint>
 
-#include "core/bvh_view.h"
+#include "accel/bvh_view.h"
 #include "core/geometry.h"
 #include "kernels/box_test.h"
 #include "kernels/hit_order.h"

@@ -9,7 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "core/bounds.h"
-#include "core/path_state.h"
+#include "shading/path_state.h"
 #include "core/random.h"
 #include "core/scene.h"
 #include "shading/direct_lighting.h"

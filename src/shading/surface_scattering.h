@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "core/geometry.h"
-#include "core/path_state.h"
+#include "shading/path_state.h"
 #include "core/random.h"
 #include "core/scene.h"
 #include "shading/direct_lighting.h"

@@ -1,28 +1,10 @@
 #pragma once
-// Textures: colors (or numbers) that vary over a surface. Procedural patterns are solid, functions
-// of the world position; images are looked up by the surface's uv.
-#include <filesystem>
-#include <memory>
-
+// Evaluating textures (core/texture.h describes them) at a surface point.
 #include <glm/glm.hpp>
 
-#include "core/image.h"
+#include "core/texture.h"
 
 namespace wideray {
-
-enum class TextureType { Checker, Noise, Fbm, Turbulence, Marble, Image };
-
-/// A texture as the scene describes it. A pattern blends `color0` into `color1` by its value at
-/// `scale` times the position: the checker alternates them in cubes of side 1/scale; noise, fbm and
-/// marble map [-1, 1] and turbulence [0, 1] onto them. An image holds the pixels of `file`.
-struct Texture {
-    TextureType type = TextureType::Checker;
-    glm::vec3 color0{0.0f}, color1{1.0f};
-    float scale = 1.0f;
-    int octaves = 4;  ///< fbm, turbulence, marble
-    std::filesystem::path file;
-    std::shared_ptr<const Image> image;
-};
 
 /// The texture's color at a surface point. Images are sampled bilinearly at `uv`, repeating outside
 /// [0, 1]; v = 0 is the bottom row. Grey images give grey colors.

@@ -1,0 +1,121 @@
+#include "accel/scene_accel.h"
+
+#include <chrono>
+
+#include <tbb/parallel_for.h>
+
+namespace wideray {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
+
+void triangleBounds(const TriangleMesh& mesh, std::vector<Bounds3f>& bounds, std::vector<glm::vec3>& centers) {
+    size_t n = mesh.triangles.size();
+    bounds.resize(n);
+    centers.resize(n);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+            const glm::uvec3& t = mesh.triangles[i];
+            Bounds3f b;
+            b.grow(mesh.positions[t.x]);
+            b.grow(mesh.positions[t.y]);
+            b.grow(mesh.positions[t.z]);
+            bounds[i] = b;
+            centers[i] = b.center();
+        }
+    });
+}
+
+template <int N>
+SceneAccel<N>::SceneAccel(const TriangleMesh& triangles, std::vector<std::unique_ptr<Geometry>> geometries,
+                          const BvhBuildConfig& config)
+    : geometries_(std::move(geometries)) {
+    if (geometries_.empty()) geometries_.emplace_back();
+    for (const auto& g : geometries_) geometryPointers_.push_back(g.get());
+    buildTriangles(triangles, config);
+    buildUser(config);
+}
+
+template <int N>
+void SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuildConfig& config) {
+    if (mesh.triangles.empty()) return;
+    auto start = std::chrono::steady_clock::now();
+    std::vector<Bounds3f> bounds;
+    std::vector<glm::vec3> centers;
+    triangleBounds(mesh, bounds, centers);
+    BinaryBvh binary = buildBinaryBvh(bounds, centers, config);
+    timings_.binarySeconds += secondsSince(start);
+
+    start = std::chrono::steady_clock::now();
+    blocks_.reserve(mesh.triangles.size() / 2);
+    LeafEmitter emit = [&](std::span<const uint32_t> prims, uint32_t& count) {
+        uint32_t first = uint32_t(blocks_.size());
+        count = uint32_t((prims.size() + kBlockSize - 1) / kBlockSize);
+        for (size_t base = 0; base < prims.size(); base += kBlockSize) {
+            TriangleBlock<kBlockSize> block;
+            for (int lane = 0; lane < kBlockSize; ++lane) {
+                bool used = base + lane < prims.size();
+                uint32_t prim = used ? prims[base + lane] : prims[base];
+                const glm::uvec3& t = mesh.triangles[prim];
+                const glm::vec3 &a = mesh.positions[t.x], &b = mesh.positions[t.y], &c = mesh.positions[t.z];
+                block.v0x[lane] = a.x; block.v0y[lane] = a.y; block.v0z[lane] = a.z;
+                block.v1x[lane] = b.x; block.v1y[lane] = b.y; block.v1z[lane] = b.z;
+                block.v2x[lane] = c.x; block.v2y[lane] = c.y; block.v2z[lane] = c.z;
+                block.primId[lane] = used ? prim : kInvalidId;
+            }
+            blocks_.push_back(block);
+        }
+        return first;
+    };
+    triangleBvh_ = collapseBvh<N>(binary, emit);
+    timings_.collapseSeconds += secondsSince(start);
+}
+
+template <int N>
+void SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
+    std::vector<Bounds3f> bounds;
+    std::vector<glm::vec3> centers;
+    std::vector<PrimRef> refs;
+    for (uint32_t g = 1; g < geometries_.size(); ++g)
+        for (uint32_t p = 0; p < geometries_[g]->primitiveCount(); ++p) {
+            refs.push_back({g, p});
+            bounds.push_back(geometries_[g]->primitiveBounds(p));
+            centers.push_back(bounds.back().center());
+        }
+    if (refs.empty()) return;
+    auto start = std::chrono::steady_clock::now();
+    BvhBuildConfig userConfig = config;
+    userConfig.blockSize = 1;
+    BinaryBvh binary = buildBinaryBvh(bounds, centers, userConfig);
+    LeafEmitter emit = [&](std::span<const uint32_t> leafPrims, uint32_t& count) {
+        uint32_t first = uint32_t(prims_.size());
+        for (uint32_t p : leafPrims) prims_.push_back(refs[p]);
+        count = uint32_t(leafPrims.size());
+        return first;
+    };
+    userBvh_ = collapseBvh<N>(binary, emit);
+    timings_.binarySeconds += secondsSince(start);
+}
+
+template <int N>
+SceneView<N> SceneAccel<N>::view() const {
+    SceneView<N> v;
+    if (!blocks_.empty()) v.triangles = {triangleBvh_.nodes.data(), triangleBvh_.root, blocks_.data()};
+    if (!prims_.empty()) v.user = {userBvh_.nodes.data(), userBvh_.root, prims_.data(), geometryPointers_.data()};
+    return v;
+}
+
+template <int N>
+size_t SceneAccel<N>::bytes() const {
+    return triangleBvh_.nodes.size() * sizeof(WideNode<N>) + blocks_.size() * sizeof(TriangleBlock<kBlockSize>) +
+           userBvh_.nodes.size() * sizeof(WideNode<N>) + prims_.size() * sizeof(PrimRef);
+}
+
+template class SceneAccel<4>;
+template class SceneAccel<8>;
+
+} // namespace wideray

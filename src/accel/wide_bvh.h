@@ -1,0 +1,65 @@
+#pragma once
+// The N-wide BVH that every kernel traverses: all children of a node are described inside the node,
+// child boxes stored per axis (SoA) so that one SIMD operation tests all N children, and the inner
+// children of a node are stored next to each other in the node array.
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "accel/bvh_binary.h"
+
+namespace wideray {
+
+/// A child reference: an inner node's index, or a leaf (kLeafFlag) holding `count` consecutive leaf
+/// items starting at `first` (triangle blocks or primitive indices, as the BVH's owner defines them).
+struct NodeRef {
+    static constexpr uint32_t kLeafFlag = 0x80000000u;
+    static constexpr int kCountShift = 27;
+    static constexpr uint32_t kMaxLeafItems = 15;
+    static constexpr uint32_t kFirstMask = (1u << kCountShift) - 1;
+
+    uint32_t bits;  ///< left uninitialized by default: traversal stacks hold hundreds of these
+
+    /// An empty leaf: what unused child slots hold.
+    static NodeRef empty() { return {kLeafFlag}; }
+    static NodeRef inner(uint32_t index) { return {index}; }
+    static NodeRef leaf(uint32_t first, uint32_t count) { return {kLeafFlag | (count << kCountShift) | first}; }
+
+    bool isLeaf() const { return bits & kLeafFlag; }
+    uint32_t index() const { return bits; }
+    uint32_t first() const { return bits & kFirstMask; }
+    uint32_t count() const { return (bits & ~kLeafFlag) >> kCountShift; }
+};
+
+template <int N>
+struct alignas(64) WideNode {
+    float lowerX[N], upperX[N], lowerY[N], upperY[N], lowerZ[N], upperZ[N];
+    NodeRef child[N];
+
+    /// Bounds of child i, e.g. lower(0, i) = lowerX[i]. Empty slots are [+inf, -inf].
+    const float* planes(int axis, bool upper) const {
+        const float* p[6] = {lowerX, upperX, lowerY, upperY, lowerZ, upperZ};
+        return p[2 * axis + (upper ? 1 : 0)];
+    }
+};
+static_assert(sizeof(WideNode<4>) == 128);
+static_assert(sizeof(WideNode<8>) == 256);
+
+template <int N>
+struct WideBvh {
+    std::vector<WideNode<N>> nodes;
+    NodeRef root = NodeRef::empty();  ///< a leaf when the whole scene fits in one
+    Bounds3f bounds;       ///< of the whole tree
+};
+
+/// Turns a leaf's primitive indices into leaf items and returns the first item's index; the item
+/// count is returned through `count` (at most NodeRef::kMaxLeafItems).
+using LeafEmitter = std::function<uint32_t(std::span<const uint32_t> prims, uint32_t& count)>;
+
+/// Collapses a binary BVH into an N-wide one (N = 4 or 8): each wide node takes the binary node's
+/// children and keeps opening the one with the largest surface area until it has N.
+template <int N>
+WideBvh<N> collapseBvh(const BinaryBvh& binary, const LeafEmitter& emitLeaf);
+
+} // namespace wideray

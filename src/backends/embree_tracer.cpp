@@ -1,0 +1,295 @@
+#include "backends/embree_tracer.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstring>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "backends/embree_user_geometry.h"
+#include "kernels/hit_order.h"
+#include "backends/tracer_factory.h"
+
+namespace wideray {
+namespace {
+
+constexpr std::pair<EmbreeKernel, const char*> kKernelNames[] = {
+    {EmbreeKernel::Intersect1, "rtcIntersect1"},   {EmbreeKernel::Packet4, "rtcIntersect4"},
+    {EmbreeKernel::Packet8, "rtcIntersect8"},      {EmbreeKernel::Packet16, "rtcIntersect16"},
+    {EmbreeKernel::Stream1M, "rtcIntersect1M"}};
+
+const char* qualityName(RTCBuildQuality q) {
+    return q == RTC_BUILD_QUALITY_LOW ? "low" : q == RTC_BUILD_QUALITY_HIGH ? "high" : "medium";
+}
+
+/// A device only for asking what this Embree build and CPU support; it lives as long as the process.
+RTCDevice queryDevice() {
+    static RTCDevice device = rtcNewDevice(nullptr);
+    return device;
+}
+
+RTCIntersectContext contextFor(Coherence coherence) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = coherence == Coherence::Coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                                                     : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    return context;
+}
+
+void toEmbree(const Ray& r, RTCRay& e) {
+    e.org_x = r.ox, e.org_y = r.oy, e.org_z = r.oz, e.tnear = r.tnear;
+    e.dir_x = r.dx, e.dir_y = r.dy, e.dir_z = r.dz, e.time = 0.0f;
+    e.tfar = r.tfar, e.mask = UINT32_MAX, e.id = 0, e.flags = 0;
+}
+
+void clearHit(RTCHit& h) { h.geomID = h.primID = h.instID[0] = RTC_INVALID_GEOMETRY_ID; }
+
+Hit fromEmbree(const RTCRayHit& e) {
+    if (e.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+    return {e.ray.tfar, e.hit.u, e.hit.v, e.hit.primID, e.hit.geomID};
+}
+
+bool isOccluded(float tfar) { return tfar == -std::numeric_limits<float>::infinity(); }
+
+template <int K> struct Packet;
+template <> struct Packet<4> {
+    using RayHit = RTCRayHit4;
+    using Rays = RTCRay4;
+    static constexpr auto intersect = rtcIntersect4;
+    static constexpr auto occluded = rtcOccluded4;
+};
+template <> struct Packet<8> {
+    using RayHit = RTCRayHit8;
+    using Rays = RTCRay8;
+    static constexpr auto intersect = rtcIntersect8;
+    static constexpr auto occluded = rtcOccluded8;
+};
+template <> struct Packet<16> {
+    using RayHit = RTCRayHit16;
+    using Rays = RTCRay16;
+    static constexpr auto intersect = rtcIntersect16;
+    static constexpr auto occluded = rtcOccluded16;
+};
+
+/// Loads rays[first, first + K) into a packet; lanes past the end and invalid rays are masked off
+/// (and given a harmless ray, as Embree may still read them).
+template <int K, class Rays>
+void loadPacket(std::span<const Ray> rays, size_t first, Rays& e, int* valid) {
+    for (int i = 0; i < K; ++i) {
+        bool active = first + i < rays.size() && isValidRay(rays[first + i]);
+        Ray r = active ? rays[first + i] : Ray{};
+        valid[i] = active ? -1 : 0;
+        e.org_x[i] = r.ox, e.org_y[i] = r.oy, e.org_z[i] = r.oz, e.tnear[i] = r.tnear;
+        e.dir_x[i] = r.dx, e.dir_y[i] = r.dy, e.dir_z[i] = r.dz, e.time[i] = 0.0f;
+        e.tfar[i] = r.tfar, e.mask[i] = UINT32_MAX, e.id[i] = 0, e.flags[i] = 0;
+    }
+}
+
+template <int K>
+void intersectPackets(RTCScene scene, RTCIntersectContext& context, std::span<const Ray> rays, std::span<Hit> hits) {
+    for (size_t first = 0; first < rays.size(); first += K) {
+        alignas(64) int valid[K];
+        typename Packet<K>::RayHit e;
+        loadPacket<K>(rays, first, e.ray, valid);
+        for (int i = 0; i < K; ++i) e.hit.geomID[i] = e.hit.primID[i] = e.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+        Packet<K>::intersect(valid, scene, &context, &e);
+        for (size_t i = 0; i < K && first + i < rays.size(); ++i)
+            hits[first + i] = e.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
+                                  ? Hit{}
+                                  : Hit{e.ray.tfar[i], e.hit.u[i], e.hit.v[i], e.hit.primID[i], e.hit.geomID[i]};
+    }
+}
+
+template <int K>
+void occludedPackets(RTCScene scene, RTCIntersectContext& context, std::span<const Ray> rays,
+                     std::span<uint8_t> occluded) {
+    for (size_t first = 0; first < rays.size(); first += K) {
+        alignas(64) int valid[K];
+        typename Packet<K>::Rays e;
+        loadPacket<K>(rays, first, e, valid);
+        Packet<K>::occluded(valid, scene, &context, &e);
+        for (size_t i = 0; i < K && first + i < rays.size(); ++i) occluded[first + i] = valid[i] && isOccluded(e.tfar[i]);
+    }
+}
+
+void intersectSingle(RTCScene scene, RTCIntersectContext& context, std::span<const Ray> rays, std::span<Hit> hits) {
+    for (size_t i = 0; i < rays.size(); ++i) {
+        hits[i] = {};
+        if (!isValidRay(rays[i])) continue;
+        RTCRayHit e;
+        toEmbree(rays[i], e.ray);
+        clearHit(e.hit);
+        rtcIntersect1(scene, &context, &e);
+        hits[i] = fromEmbree(e);
+    }
+}
+
+void occludedSingle(RTCScene scene, RTCIntersectContext& context, std::span<const Ray> rays,
+                    std::span<uint8_t> occluded) {
+    for (size_t i = 0; i < rays.size(); ++i) {
+        occluded[i] = 0;
+        if (!isValidRay(rays[i])) continue;
+        RTCRay e;
+        toEmbree(rays[i], e);
+        rtcOccluded1(scene, &context, &e);
+        occluded[i] = isOccluded(e.tfar);
+    }
+}
+
+/// Streams hold the valid rays of a chunk, compacted; `source` maps them back.
+constexpr size_t kStreamSize = 256;
+
+void intersectStream(RTCScene scene, RTCIntersectContext& context, std::span<const Ray> rays, std::span<Hit> hits) {
+    std::array<RTCRayHit, kStreamSize> stream;
+    std::array<uint32_t, kStreamSize> source;
+    for (size_t first = 0; first < rays.size(); first += kStreamSize) {
+        size_t end = std::min(rays.size(), first + kStreamSize), m = 0;
+        for (size_t i = first; i < end; ++i) {
+            hits[i] = {};
+            if (!isValidRay(rays[i])) continue;
+            toEmbree(rays[i], stream[m].ray);
+            clearHit(stream[m].hit);
+            source[m++] = uint32_t(i);
+        }
+        rtcIntersect1M(scene, &context, stream.data(), unsigned(m), sizeof(RTCRayHit));
+        for (size_t j = 0; j < m; ++j) hits[source[j]] = fromEmbree(stream[j]);
+    }
+}
+
+void occludedStream(RTCScene scene, RTCIntersectContext& context, std::span<const Ray> rays,
+                    std::span<uint8_t> occluded) {
+    std::array<RTCRay, kStreamSize> stream;
+    std::array<uint32_t, kStreamSize> source;
+    for (size_t first = 0; first < rays.size(); first += kStreamSize) {
+        size_t end = std::min(rays.size(), first + kStreamSize), m = 0;
+        for (size_t i = first; i < end; ++i) {
+            occluded[i] = 0;
+            if (!isValidRay(rays[i])) continue;
+            toEmbree(rays[i], stream[m]);
+            source[m++] = uint32_t(i);
+        }
+        rtcOccluded1M(scene, &context, stream.data(), unsigned(m), sizeof(RTCRay));
+        for (size_t j = 0; j < m; ++j) occluded[source[j]] = isOccluded(stream[j].tfar);
+    }
+}
+
+/// Copies of the world mesh in Embree's buffers: shared buffers would tie the tracer's lifetime to
+/// the caller's mesh and need padding past the last vertex for Embree's 16-byte loads.
+void attachTriangles(RTCDevice device, RTCScene scene, const TriangleMesh& world) {
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    void* vertices = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3),
+                                             world.positions.size());
+    void* indices = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(glm::uvec3),
+                                            world.triangles.size());
+    if (vertices && indices) {
+        std::memcpy(vertices, world.positions.data(), world.positions.size() * sizeof(glm::vec3));
+        std::memcpy(indices, world.triangles.data(), world.triangles.size() * sizeof(glm::uvec3));
+    }
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(scene, g, 0);
+    rtcReleaseGeometry(g);
+}
+
+EmbreeKernel widestNativePacket() {
+    for (EmbreeKernel k : {EmbreeKernel::Packet16, EmbreeKernel::Packet8, EmbreeKernel::Packet4})
+        if (EmbreeTracer::supports(k)) return k;
+    return EmbreeKernel::Intersect1;
+}
+
+} // namespace
+
+const char* embreeKernelName(EmbreeKernel kernel) {
+    for (const auto& [k, name] : kKernelNames)
+        if (k == kernel) return name;
+    return "?";
+}
+
+bool EmbreeTracer::supports(EmbreeKernel kernel) {
+    auto property = [](RTCDeviceProperty p) { return rtcGetDeviceProperty(queryDevice(), p) != 0; };
+    switch (kernel) {
+    case EmbreeKernel::Intersect1: return true;
+    case EmbreeKernel::Packet4: return property(RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED);
+    case EmbreeKernel::Packet8: return property(RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED);
+    case EmbreeKernel::Packet16: return property(RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED);
+    case EmbreeKernel::Stream1M: return property(RTC_DEVICE_PROPERTY_RAY_STREAM_SUPPORTED);
+    }
+    return false;
+}
+
+EmbreeTracer::EmbreeTracer(const Scene& scene, const TriangleMesh& world, const EmbreeConfig& config)
+    : geometries_(userGeometries(scene)),
+      coherent_(config.coherent.value_or(widestNativePacket())),
+      incoherent_(config.incoherent),
+      quality_(config.quality) {
+    for (EmbreeKernel k : {coherent_, incoherent_})
+        if (!supports(k))
+            throw InputError("embree", "", std::string("this CPU or Embree build cannot run ") + embreeKernelName(k) +
+                                                 " natively");
+    device_.reset(rtcNewDevice(nullptr));
+    if (!device_) throw std::runtime_error("Embree: cannot create a device");
+    // Errors are recorded here and turned into exceptions by check(): throwing from inside Embree's
+    // C API would unwind through frames that do not expect it.
+    rtcSetDeviceErrorFunction(
+        device_.get(), [](void* self, RTCError, const char* message) { static_cast<EmbreeTracer*>(self)->lastError_ = message; },
+        this);
+    rtcSetDeviceMemoryMonitorFunction(
+        device_.get(),
+        [](void* self, ssize_t bytes, bool) {
+            static_cast<EmbreeTracer*>(self)->bytes_ += bytes;
+            return true;
+        },
+        this);
+
+    auto start = std::chrono::steady_clock::now();
+    scene_.reset(rtcNewScene(device_.get()));
+    check("rtcNewScene");
+    rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_NONE);
+    rtcSetSceneBuildQuality(scene_.get(), quality_);
+    if (!world.triangles.empty()) attachTriangles(device_.get(), scene_.get(), world);
+    check("triangle geometry");
+    for (uint32_t geomId = 1; geomId < geometries_.size(); ++geomId)
+        attachUserGeometry(device_.get(), scene_.get(), *geometries_[geomId], geomId);
+    check("user geometry");
+    rtcCommitScene(scene_.get());
+    check("rtcCommitScene");
+    buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void EmbreeTracer::check(const char* step) const {
+    if (rtcGetDeviceError(device_.get()) != RTC_ERROR_NONE)
+        throw std::runtime_error(std::string("Embree: ") + step + ": " + lastError_);
+}
+
+void EmbreeTracer::intersect(std::span<const Ray> rays, std::span<Hit> hits, Coherence coherence,
+                             TraversalCost* costs) const {
+    RTCIntersectContext context = contextFor(coherence);
+    RTCScene scene = scene_.get();
+    switch (kernel(coherence)) {
+    case EmbreeKernel::Intersect1: intersectSingle(scene, context, rays, hits); break;
+    case EmbreeKernel::Packet4: intersectPackets<4>(scene, context, rays, hits); break;
+    case EmbreeKernel::Packet8: intersectPackets<8>(scene, context, rays, hits); break;
+    case EmbreeKernel::Packet16: intersectPackets<16>(scene, context, rays, hits); break;
+    case EmbreeKernel::Stream1M: intersectStream(scene, context, rays, hits); break;
+    }
+    if (costs) std::fill(costs, costs + rays.size(), TraversalCost{});
+}
+
+void EmbreeTracer::occluded(std::span<const Ray> rays, std::span<uint8_t> occluded, Coherence coherence, int) const {
+    RTCIntersectContext context = contextFor(coherence);
+    RTCScene scene = scene_.get();
+    switch (kernel(coherence)) {
+    case EmbreeKernel::Intersect1: occludedSingle(scene, context, rays, occluded); break;
+    case EmbreeKernel::Packet4: occludedPackets<4>(scene, context, rays, occluded); break;
+    case EmbreeKernel::Packet8: occludedPackets<8>(scene, context, rays, occluded); break;
+    case EmbreeKernel::Packet16: occludedPackets<16>(scene, context, rays, occluded); break;
+    case EmbreeKernel::Stream1M: occludedStream(scene, context, rays, occluded); break;
+    }
+}
+
+std::string EmbreeTracer::description() const {
+    return std::string("embree ") + embreeKernelName(coherent_) + "/" + embreeKernelName(incoherent_) + ", " +
+           qualityName(quality_) + " quality BVH";
+}
+
+} // namespace wideray

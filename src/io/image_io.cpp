@@ -1,0 +1,71 @@
+#include <cmath>
+#include <system_error>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "core/error.h"
+#include "io/image_io.h"
+
+namespace wideray {
+namespace {
+
+float linearToSrgb(float v) {
+    v = std::clamp(v, 0.0f, 1.0f);
+    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+}
+
+float srgbToLinear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
+
+bool isFloatFormat(const std::string& ext) { return ext == ".exr" || ext == ".hdr" || ext == ".pfm"; }
+
+} // namespace
+
+void writeImage(const Image& image, const std::filesystem::path& path, bool srgb) {
+    const std::string file = path.string();
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = char(std::tolower(c));
+    std::filesystem::path dir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    // A hidden name in the same folder, so that the rename cannot cross file systems; it keeps the
+    // extension, which is how OpenImageIO picks the format.
+    std::string tempName = path.stem().string();
+    tempName.insert(0, 1, '.');
+    tempName += ".tmp" + std::to_string(getpid()) + ext;
+    std::filesystem::path temp = dir / tempName;
+
+    auto out = OIIO::ImageOutput::create(temp.string());
+    if (!out) throw InputError(file, "", "cannot write this image format: " + OIIO::geterror());
+    bool floatOut = isFloatFormat(ext);
+    OIIO::ImageSpec spec(image.width, image.height, image.channels, floatOut ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    std::vector<float> data = image.pixels;
+    if (!floatOut && srgb && image.channels >= 3)
+        for (size_t i = 0; i < data.size(); ++i)
+            if (image.channels == 3 || i % image.channels < 3) data[i] = linearToSrgb(data[i]);
+    bool ok = out->open(temp.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, data.data()) && out->close();
+    if (!ok) {
+        std::string why = out->geterror();
+        std::filesystem::remove(temp, ec);
+        throw InputError(file, "", "cannot write image: " + why);
+    }
+    std::filesystem::rename(temp, path, ec);
+    if (ec) {
+        std::filesystem::remove(temp, ec);
+        throw InputError(file, "", "cannot move the finished image into place: " + ec.message());
+    }
+}
+
+Image readImage(const std::filesystem::path& path, bool srgb) {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) throw InputError(path.string(), "", "cannot read image: " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    Image image(spec.width, spec.height, spec.nchannels);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+        throw InputError(path.string(), "", "cannot read image: " + in->geterror());
+    if (srgb && spec.format == OIIO::TypeDesc::UINT8)
+        for (float& v : image.pixels) v = srgbToLinear(v);
+    return image;
+}
+
+} // namespace wideray

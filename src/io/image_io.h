@@ -1,0 +1,17 @@
+#pragma once
+// Image files through OpenImageIO: written whole or not at all.
+#include <filesystem>
+
+#include "core/image.h"
+
+namespace wideray {
+
+/// Writes the image in the format its extension names (png, exr, jpg, tif, ...). 8-bit formats get
+/// the sRGB transfer curve when `srgb` is set; float formats keep linear values. The image goes to a
+/// temporary file in the same folder, renamed into place only once complete. Throws InputError.
+void writeImage(const Image& image, const std::filesystem::path& path, bool srgb);
+
+/// Reads an image as linear floats (sRGB decoded for 8-bit files when `srgb`). Throws InputError.
+Image readImage(const std::filesystem::path& path, bool srgb);
+
+} // namespace wideray
