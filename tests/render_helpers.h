@@ -4,7 +4,7 @@
 
 #include "core/fp_mode.h"
 #include "render/renderer.h"
-#include "backends/tracer_factory.h"
+#include "backends/wideray_structure.h"
 
 namespace wideray {
 
@@ -12,12 +12,9 @@ inline Image renderWithReference(const Scene& scene, int threads, const RenderOp
                                  RenderStats* statsOut = nullptr) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
     FlushToZeroScope ftz;
-    TriangleMesh world = flattenTriangles(scene);
-    TracerConfig config;
-    config.kernel = KernelChoice::Scalar;
-    BuiltTracer built = buildWiderayTracer(scene, world, config);
+    std::unique_ptr<Tracer> tracer = buildWideBvh(std::make_shared<const SceneGeometry>(scene), {})->tracer({"scalar"});
     RenderStats stats;
-    Image image = render(scene, world, *built.tracer, options, stats);
+    Image image = render(scene, *tracer, options, stats);
     if (statsOut) *statsOut = stats;
     return image;
 }

@@ -32,7 +32,7 @@ Bounds3f triangleBox(const TriangleMesh& mesh, uint32_t prim) {
 
 template <int N>
 void checkWide(const TriangleMesh& mesh) {
-    SceneAccel<N> accel(mesh, {});
+    SceneAccel<N> accel(std::make_shared<SceneGeometry>(mesh));
     const WideBvh<N>& bvh = accel.triangleBvh();
     const auto& blocks = accel.blocks();
     std::vector<int> seen(mesh.triangles.size(), 0);
@@ -100,7 +100,7 @@ TEST(Bvh, IdenticalTrianglesStillGiveABoundedTree) {
     mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     mesh.triangles.assign(5000, glm::uvec3(0, 1, 2));
     checkWide<8>(mesh);
-    SceneAccel<8> accel(mesh, {});
+    SceneAccel<8> accel(std::make_shared<SceneGeometry>(mesh));
     EXPECT_LE(wideBvhStats(accel.triangleBvh(), SceneAccel<8>::defaultConfig()).depth, kMaxBvhDepth);
 }
 
@@ -143,7 +143,7 @@ TEST(Bvh, SahCostBelowMedianSplit) {
 
 TEST(Bvh, BuildIsDeterministic) {
     TriangleMesh mesh = testMesh();
-    SceneAccel<8> a(mesh, {}), b(mesh, {});
+    SceneAccel<8> a(std::make_shared<SceneGeometry>(mesh)), b(std::make_shared<SceneGeometry>(mesh));
     ASSERT_EQ(a.triangleBvh().nodes.size(), b.triangleBvh().nodes.size());
     for (size_t n = 0; n < a.triangleBvh().nodes.size(); ++n) {
         const WideNode<8>&x = a.triangleBvh().nodes[n], &y = b.triangleBvh().nodes[n];

@@ -14,7 +14,7 @@
 #include "render/renderer.h"
 #include "io/scene_parser.h"
 #include "backends/embree_tracer.h"
-#include "backends/tracer_factory.h"
+#include "backends/wideray_structure.h"
 #include "ray_sets.h"
 #include "test_data.h"
 
@@ -97,24 +97,28 @@ Differences compare(const TriangleMesh& world, const std::vector<Ray>& rays, con
     return d;
 }
 
-std::unique_ptr<Tracer> referenceTracer(const Scene& scene, const TriangleMesh& world) {
-    TracerConfig config;
-    config.kernel = KernelChoice::Scalar;
-    return buildWiderayTracer(scene, world, config).tracer;
+std::unique_ptr<Tracer> referenceTracer(std::shared_ptr<const SceneGeometry> geometry) {
+    return buildWideBvh(std::move(geometry), {})->tracer({"scalar"});
+}
+
+std::shared_ptr<const EmbreeStructure> embreeMedium(std::shared_ptr<const SceneGeometry> geometry) {
+    return std::make_shared<const EmbreeStructure>(std::move(geometry), RTC_BUILD_QUALITY_MEDIUM);
 }
 
 /// Every Embree kernel this CPU runs natively against our reference, within the near-tie budget.
-void expectEmbreeAgrees(const std::string& name, const Scene& scene, const TriangleMesh& world,
+void expectEmbreeAgrees(const std::string& name, std::shared_ptr<const SceneGeometry> geometry,
                         const std::vector<Ray>& rays) {
     FlushToZeroScope ftz;
-    Traced ours = trace(*referenceTracer(scene, world), rays);
+    const TriangleMesh& world = *(*geometry)[0].triangles();
+    Traced ours = trace(*referenceTracer(geometry), rays);
+    std::shared_ptr<const EmbreeStructure> structure = embreeMedium(geometry);
     const size_t budget = rays.size() / 10000;  // 99.99% agreement
     for (EmbreeKernel kernel : kAllKernels) {
-        if (!EmbreeTracer::supports(kernel)) {
+        if (!embreeSupports(kernel)) {
             std::printf("  %-28s %-15s not native on this CPU, skipped\n", name.c_str(), embreeKernelName(kernel));
             continue;
         }
-        EmbreeTracer embree(scene, world, {RTC_BUILD_QUALITY_MEDIUM, kernel, kernel});
+        EmbreeTracer embree(structure, kernel, kernel);
         // Packets also run with Embree's coherent-ray hint, the way the renderer calls them.
         bool packet = kernel != EmbreeKernel::Intersect1 && kernel != EmbreeKernel::Stream1M;
         Differences d = compare(world, rays, ours, trace(embree, rays, packet ? Coherence::Coherent : Coherence::Incoherent));
@@ -122,8 +126,8 @@ void expectEmbreeAgrees(const std::string& name, const Scene& scene, const Trian
                     "overlap, %zu edge slip, %zu unexplained), %zu grazing t, %zu occlusion differs; build %.1f ms, "
                     "%.2f MB\n",
                     name.c_str(), embreeKernelName(kernel), rays.size(), d.hits, d.otherPrimitive, d.sharedEdge,
-                    d.overlap, d.edgeSlip, d.unexplained, d.grazing, d.occlusion, embree.buildSeconds() * 1e3,
-                    double(embree.bytes()) / (1 << 20));
+                    d.overlap, d.edgeSlip, d.unexplained, d.grazing, d.occlusion, structure->buildSeconds() * 1e3,
+                    double(structure->bytes()) / (1 << 20));
         std::fflush(stdout);
         SCOPED_TRACE(name + " " + embreeKernelName(kernel));
         EXPECT_EQ(d.unexplained, 0u);
@@ -137,7 +141,7 @@ void expectEmbreeAgrees(const std::string& name, const Scene& scene, const Trian
 }
 
 void expectEmbreeAgreesOnMesh(const std::string& name, const TriangleMesh& mesh, size_t rayCount, uint32_t seed) {
-    expectEmbreeAgrees(name, Scene{}, mesh, testing::randomRays(mesh, rayCount, seed));
+    expectEmbreeAgrees(name, std::make_shared<const SceneGeometry>(mesh), testing::randomRays(mesh, rayCount, seed));
 }
 
 TEST(EmbreeCrosscheck, GeneratedMeshes) {
@@ -162,8 +166,8 @@ INSTANTIATE_TEST_SUITE_P(EmbreeRealMeshes, EmbreeCrosscheckShared,
 TEST(EmbreeCrosscheck, UserGeometryMatchesOurs) {
     Scene scene = loadScene(kSourceDir / "scenes/default.json");
     ASSERT_FALSE(scene.spheres.empty());
-    TriangleMesh world = flattenTriangles(scene);
-    std::vector<Ray> rays = testing::randomRays(world, 20000, 15);
+    auto geometry = std::make_shared<const SceneGeometry>(scene);
+    std::vector<Ray> rays = testing::randomRays(*(*geometry)[0].triangles(), 20000, 15);
     const Sphere& sphere = scene.spheres[0];
     for (size_t i = 0; i < rays.size(); i += 2) {
         glm::vec3 o(rays[i].ox, rays[i].oy, rays[i].oz);
@@ -171,11 +175,11 @@ TEST(EmbreeCrosscheck, UserGeometryMatchesOurs) {
         glm::vec3 d = glm::normalize(target - o);
         rays[i].dx = d.x, rays[i].dy = d.y, rays[i].dz = d.z;
     }
-    expectEmbreeAgrees("default.json", scene, world, rays);
+    expectEmbreeAgrees("default.json", geometry, rays);
 
     FlushToZeroScope ftz;
-    Traced ours = trace(*referenceTracer(scene, world), rays);
-    Traced embree = trace(EmbreeTracer(scene, world), rays);
+    Traced ours = trace(*referenceTracer(geometry), rays);
+    Traced embree = trace(*embreeMedium(geometry)->tracer({}), rays);
     size_t sphereHits = 0;
     for (size_t i = 0; i < rays.size(); ++i) {
         if (ours.hits[i].geomId != 1) continue;
@@ -193,10 +197,10 @@ TEST(EmbreeCrosscheck, InvalidRaysMissAndAreNotOccluded) {
         {0, 0, -5, 0, 0, 0, 0, inf},   {0, 0, -5, 0, 0, 1, 10, 1},    {0, 0, -5, 0, 0, 1, nan, inf},
         {0, 0, -5, 0, 0, 1, 0, inf},  // valid, hits: keeps the packets' valid lanes honest
     };
-    TriangleMesh mesh = makeIcosphere(2);
+    std::shared_ptr<const EmbreeStructure> structure = embreeMedium(std::make_shared<const SceneGeometry>(makeIcosphere(2)));
     for (EmbreeKernel kernel : kAllKernels) {
-        if (!EmbreeTracer::supports(kernel)) continue;
-        Traced traced = trace(EmbreeTracer(Scene{}, mesh, {RTC_BUILD_QUALITY_MEDIUM, kernel, kernel}), rays);
+        if (!embreeSupports(kernel)) continue;
+        Traced traced = trace(EmbreeTracer(structure, kernel, kernel), rays);
         for (size_t i = 0; i + 1 < rays.size(); ++i) {
             EXPECT_FALSE(traced.hits[i].valid()) << embreeKernelName(kernel) << " ray " << i;
             EXPECT_EQ(traced.occluded[i], 0) << embreeKernelName(kernel) << " ray " << i;
@@ -206,21 +210,21 @@ TEST(EmbreeCrosscheck, InvalidRaysMissAndAreNotOccluded) {
     }
 }
 
-Image renderDefaultScene(const Tracer& tracer, const Scene& scene, const TriangleMesh& world) {
+Image renderDefaultScene(const Tracer& tracer, const Scene& scene) {
     RenderOptions options;
     options.width = 160;
     options.height = 120;
     RenderStats stats;
-    return render(scene, world, tracer, options, stats);
+    return render(scene, tracer, options, stats);
 }
 
 TEST(EmbreeCrosscheck, DefaultSceneRendersAlike) {
     FlushToZeroScope ftz;
     Scene scene = loadScene(kSourceDir / "scenes/default.json");
-    TriangleMesh world = flattenTriangles(scene);
-    Image ours = renderDefaultScene(*referenceTracer(scene, world), scene, world);
-    EmbreeTracer embree(scene, world);
-    Image theirs = renderDefaultScene(embree, scene, world);
+    auto geometry = std::make_shared<const SceneGeometry>(scene);
+    Image ours = renderDefaultScene(*referenceTracer(geometry), scene);
+    std::unique_ptr<Tracer> embree = embreeMedium(geometry)->tracer({});
+    Image theirs = renderDefaultScene(*embree, scene);
     ASSERT_EQ(ours.pixels.size(), theirs.pixels.size());
     double sum = 0, largest = 0;
     size_t differing = 0;
@@ -233,7 +237,7 @@ TEST(EmbreeCrosscheck, DefaultSceneRendersAlike) {
     double mean = sum / double(ours.pixels.size());
     std::printf("  default.json 160x120 through %s: mean |difference| %.6f, max %.4f, %zu of %zu values differ "
                 "by more than 0.02\n",
-                embree.description().c_str(), mean, largest, differing, ours.pixels.size());
+                embree->description().c_str(), mean, largest, differing, ours.pixels.size());
     EXPECT_LT(mean, 0.002);
     EXPECT_LT(differing, ours.pixels.size() / 200);
 }

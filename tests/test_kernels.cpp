@@ -11,8 +11,7 @@
 #include "io/mesh_generators.h"
 #include "io/mesh_io.h"
 #include "accel/scene_accel.h"
-#include "geometry/sphere_geometry.h"
-#include "kernels/isa_kernels.h"
+#include "kernels/kernel_registry.h"
 #include "kernels/reference_kernel.h"
 #include "ray_sets.h"
 #include "test_data.h"
@@ -45,11 +44,12 @@ std::vector<Isa> availableIsas() {
     return isas;
 }
 
+/// Every kernel of the table that its ISA runs, but the reference itself.
 template <int N>
-std::vector<KernelSet<N>> kernelsOf(const IsaKernelTable<N>& t) {
-    std::vector<KernelSet<N>> all;
-    for (const KernelSet<N>& k : {t.single, t.packet4, t.packet8, t.packet16, t.packet256, t.stream, t.drst})
-        if (k.intersect) all.push_back(k);
+std::vector<Kernel<N>> kernelsOf(const KernelTable<N>& t) {
+    std::vector<Kernel<N>> all;
+    for (const Kernel<N>& k : t.rows)
+        if (k.available() && std::string_view(k.name) != "scalar") all.push_back(k);
     return all;
 }
 
@@ -60,7 +60,7 @@ void expectAllKernelsMatchReference(const SceneAccel<N>& accel, const std::vecto
     reference::intersect<N>(accel.view(), rays.data(), expected.data(), rays.size(), nullptr);
     reference::occluded<N>(accel.view(), rays.data(), expectedOccluded.data(), rays.size());
     for (Isa isa : availableIsas())
-        for (const KernelSet<N>& kernel : kernelsOf(kernelTable<N>(isa))) {
+        for (const Kernel<N>& kernel : kernelsOf(kernelTable<N>(isa))) {
             std::vector<Hit> hits(rays.size());
             std::vector<uint8_t> occluded(rays.size(), 7);
             kernel.intersect(accel.view(), rays.data(), hits.data(), rays.size(), nullptr);
@@ -92,11 +92,9 @@ void expectAllKernelsMatchReference(const SceneAccel<N>& accel, const std::vecto
 template <int N>
 void checkScene(const Scene& scene, int size) {
     FlushToZeroScope ftz;
-    TriangleMesh world = flattenTriangles(scene);
-    std::vector<std::unique_ptr<Geometry>> geometries;
-    geometries.emplace_back();
-    if (!scene.spheres.empty()) geometries.push_back(std::make_unique<SphereGeometry>(scene.spheres));
-    SceneAccel<N> accel(world, std::move(geometries));
+    auto geometry = std::make_shared<const SceneGeometry>(scene);
+    const TriangleMesh& world = *(*geometry)[0].triangles();
+    SceneAccel<N> accel(geometry);
     std::vector<Ray> primary = primaryRays(scene, size, size);
     expectAllKernelsMatchReference(accel, primary, "primary");
     expectAllKernelsMatchReference(accel, shadowRays(accel, primary, scene.lights.at(0).position), "shadow");
@@ -146,12 +144,12 @@ INSTANTIATE_TEST_SUITE_P(RealMeshes, SharedMeshKernels,
 TEST(Kernels, ShadowCacheAnswersRepeatedOccluders) {
     FlushToZeroScope ftz;
     TriangleMesh mesh = makeQuad();  // one occluder between the origins and the light
-    SceneAccel<8> accel(mesh, {});
+    SceneAccel<8> accel(std::make_shared<SceneGeometry>(mesh));
     std::vector<Ray> rays;
     for (int i = 0; i < 100; ++i) rays.push_back({-0.5f + 0.01f * float(i), -1.0f, 0.2f, 0.0f, 1.0f, 0.0f, 0.0f, 2.0f});
     ShadowCache cache;
     std::vector<uint8_t> occluded(rays.size());
-    kernelTable<8>(bestIsa()).single.occludedCached(accel.view(), rays.data(), occluded.data(), rays.size(), cache);
+    kernelTable<8>(bestIsa()).find("single")->occludedCached(accel.view(), rays.data(), occluded.data(), rays.size(), cache);
     for (uint8_t o : occluded) EXPECT_EQ(o, 1);
     EXPECT_EQ(cache.queries, 100u);
     EXPECT_GE(cache.hits, 90u) << "the quad's block answers all but the first ray (and rays of the other triangle)";
@@ -160,7 +158,7 @@ TEST(Kernels, ShadowCacheAnswersRepeatedOccluders) {
 TEST(Kernels, EdgeCases) {
     FlushToZeroScope ftz;
     TriangleMesh mesh = makeIcosphere(3);
-    SceneAccel<8> accel(mesh, {});
+    SceneAccel<8> accel(std::make_shared<SceneGeometry>(mesh));
     const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
     std::vector<Ray> rays = testing::randomRays(mesh, 4097, 5);
     // Invalid rays scattered through packets: NaN/Inf directions and origins, tnear > tfar, zero direction.

@@ -12,7 +12,6 @@
 #include "io/image_io.h"
 #include "render/renderer.h"
 #include "io/scene_parser.h"
-#include "backends/tracer_factory.h"
 #include "shading/fresnel.h"
 #include "render_helpers.h"
 

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "io/mesh_generators.h"
+#include "geometry/triangle_geometry.h"
 #include "io/scene_parser.h"
 #include "temp_dir.h"
 

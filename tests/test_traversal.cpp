@@ -28,7 +28,7 @@ size_t rayBudget(const TriangleMesh& mesh, size_t wanted) {
 template <int N>
 void expectMatchesBruteForce(const TriangleMesh& mesh, size_t rayCount, uint32_t seed) {
     FlushToZeroScope ftz;
-    SceneAccel<N> accel(mesh, {});
+    SceneAccel<N> accel(std::make_shared<SceneGeometry>(mesh));
     std::vector<Ray> rays = testing::randomRays(mesh, rayCount, seed);
     std::vector<Hit> hits(rays.size());
     std::vector<uint8_t> occluded(rays.size());
@@ -73,7 +73,7 @@ INSTANTIATE_TEST_SUITE_P(RealMeshes, SharedMeshTraversal,
 
 TEST(Traversal, InvalidRaysMissAndAreNotOccluded) {
     TriangleMesh mesh = makeIcosphere(2);
-    SceneAccel<8> accel(mesh, {});
+    SceneAccel<8> accel(std::make_shared<SceneGeometry>(mesh));
     const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
     std::vector<Ray> rays = {
         {0, 0, -5, nan, 0, 1, 0, inf}, {0, 0, -5, 0, 0, inf, 0, inf}, {nan, 0, -5, 0, 0, 1, 0, inf},
@@ -91,7 +91,7 @@ TEST(Traversal, InvalidRaysMissAndAreNotOccluded) {
 
 TEST(Traversal, TfarLimitsHitsAndOcclusion) {
     TriangleMesh mesh = makeQuad();  // y = 0 plane, [-1,1]^2
-    SceneAccel<4> accel(mesh, {});
+    SceneAccel<4> accel(std::make_shared<SceneGeometry>(mesh));
     Ray below{0.25f, 1.0f, 0.25f, 0, -1, 0, 0, 0.999f}, reach{0.25f, 1.0f, 0.25f, 0, -1, 0, 0, 1.0f};
     Hit hit;
     uint8_t occ = 0;

@@ -23,7 +23,7 @@ Hit trace(const SceneAccel<8>& accel, const Ray& ray) {
 
 /// Aims rays from interior points at every vertex and at points along every edge.
 void expectClosed(const TriangleMesh& mesh, const std::vector<glm::vec3>& insidePoints) {
-    SceneAccel<8> accel(mesh, {});
+    SceneAccel<8> accel(std::make_shared<SceneGeometry>(mesh));
     size_t rays = 0, misses = 0;
     for (const glm::vec3& o : insidePoints) {
         for (const glm::vec3& v : mesh.positions) {
@@ -56,7 +56,7 @@ TEST(Watertight, TorusFromInsideTheTube) {
 }
 
 TEST(Watertight, SharedDiagonalOfAQuadIsNeverMissed) {
-    SceneAccel<8> accel(makeQuad(), {});
+    SceneAccel<8> accel(std::make_shared<SceneGeometry>(makeQuad()));
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> coord(-0.999f, 0.999f);
     for (int i = 0; i < 10000; ++i) {
@@ -72,7 +72,7 @@ TEST(Watertight, SharedDiagonalOfAQuadIsNeverMissed) {
 }
 
 TEST(Watertight, AxisParallelRaysAndZeroDirectionComponents) {
-    SceneAccel<8> accel(makeCube(), {});
+    SceneAccel<8> accel(std::make_shared<SceneGeometry>(makeCube()));
     for (int axis = 0; axis < 3; ++axis)
         for (float sign : {-1.0f, 1.0f}) {
             glm::vec3 d(0.0f), o(0.2f, -0.3f, 0.4f);
@@ -89,7 +89,7 @@ TEST(Watertight, AxisParallelRaysAndZeroDirectionComponents) {
 }
 
 TEST(Watertight, GrazingRaysDoNotHitTheInsideOfAPlane) {
-    SceneAccel<8> accel(makeQuad(), {});
+    SceneAccel<8> accel(std::make_shared<SceneGeometry>(makeQuad()));
     EXPECT_FALSE(trace(accel, Ray{-2.0f, 1e-6f, 0.1f, 1.0f, 0.0f, 0.0f, 0.0f, 10.0f}).valid());
     EXPECT_FALSE(trace(accel, Ray{-2.0f, -1e-6f, 0.1f, 1.0f, 0.0f, 0.0f, 0.0f, 10.0f}).valid());
     // A ray within the plane sees the triangles edge-on: zero area, no hit, no crash.

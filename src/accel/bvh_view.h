@@ -8,7 +8,7 @@
 
 namespace wideray {
 
-class Geometry;
+class UserGeometry;
 
 template <int N>
 struct TriangleBvhView {
@@ -28,7 +28,7 @@ struct UserBvhView {
     const WideNode<N>* nodes = nullptr;
     NodeRef root = NodeRef::empty();
     const PrimRef* prims = nullptr;
-    const Geometry* const* geometries = nullptr;  ///< indexed by geomId
+    const UserGeometry* const* geometries = nullptr;  ///< indexed by geomId
 };
 
 template <int N>

@@ -1,6 +1,7 @@
 #include "accel/scene_accel.h"
 
 #include <chrono>
+#include <stdexcept>
 
 #include <tbb/parallel_for.h>
 
@@ -31,12 +32,15 @@ void triangleBounds(const TriangleMesh& mesh, std::vector<Bounds3f>& bounds, std
 }
 
 template <int N>
-SceneAccel<N>::SceneAccel(const TriangleMesh& triangles, std::vector<std::unique_ptr<Geometry>> geometries,
-                          const BvhBuildConfig& config)
-    : geometries_(std::move(geometries)) {
-    if (geometries_.empty()) geometries_.emplace_back();
-    for (const auto& g : geometries_) geometryPointers_.push_back(g.get());
-    buildTriangles(triangles, config);
+SceneAccel<N>::SceneAccel(std::shared_ptr<const SceneGeometry> geometry, const BvhBuildConfig& config)
+    : geometry_(std::move(geometry)) {
+    // The triangle blocks name their triangles by primId alone: one triangle geometry, geomId 0.
+    for (uint32_t g = 0; g < geometry_->size(); ++g) {
+        const Geometry& item = (*geometry_)[g];
+        userGeometries_.push_back(item.user());
+        if (item.triangles() && g != 0) throw std::logic_error("SceneAccel: triangle meshes must be geometry 0");
+    }
+    if (geometry_->size() > 0 && (*geometry_)[0].triangles()) buildTriangles(*(*geometry_)[0].triangles(), config);
     buildUser(config);
 }
 
@@ -80,10 +84,10 @@ void SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
     std::vector<Bounds3f> bounds;
     std::vector<glm::vec3> centers;
     std::vector<PrimRef> refs;
-    for (uint32_t g = 1; g < geometries_.size(); ++g)
-        for (uint32_t p = 0; p < geometries_[g]->primitiveCount(); ++p) {
+    for (uint32_t g = 0; g < userGeometries_.size(); ++g)
+        for (uint32_t p = 0; userGeometries_[g] && p < userGeometries_[g]->primitiveCount(); ++p) {
             refs.push_back({g, p});
-            bounds.push_back(geometries_[g]->primitiveBounds(p));
+            bounds.push_back(userGeometries_[g]->primitiveBounds(p));
             centers.push_back(bounds.back().center());
         }
     if (refs.empty()) return;
@@ -105,7 +109,7 @@ template <int N>
 SceneView<N> SceneAccel<N>::view() const {
     SceneView<N> v;
     if (!blocks_.empty()) v.triangles = {triangleBvh_.nodes.data(), triangleBvh_.root, blocks_.data()};
-    if (!prims_.empty()) v.user = {userBvh_.nodes.data(), userBvh_.root, prims_.data(), geometryPointers_.data()};
+    if (!prims_.empty()) v.user = {userBvh_.nodes.data(), userBvh_.root, prims_.data(), userGeometries_.data()};
     return v;
 }
 

@@ -1,13 +1,12 @@
 #pragma once
-// The acceleration structures of a scene: an N-wide BVH over its triangles, laid out in blocks for
+// Our acceleration structure of a scene: an N-wide BVH over its triangles, laid out in blocks for
 // SIMD intersection, and one over its user geometry (spheres).
 #include <memory>
 #include <vector>
 
 #include "accel/bvh_binary.h"
 #include "accel/bvh_view.h"
-#include "core/geometry.h"
-#include "core/mesh.h"
+#include "geometry/scene_geometry.h"
 
 namespace wideray {
 
@@ -20,9 +19,8 @@ struct BuildTimings {
 template <int N>
 class SceneAccel {
 public:
-    /// geometries[0] must be null (geomId 0 is the triangle mesh); the others are user geometry.
-    SceneAccel(const TriangleMesh& triangles, std::vector<std::unique_ptr<Geometry>> geometries,
-               const BvhBuildConfig& config = defaultConfig());
+    /// Built over every triangle mesh and every user geometry of `geometry`, which it keeps alive.
+    explicit SceneAccel(std::shared_ptr<const SceneGeometry> geometry, const BvhBuildConfig& config = defaultConfig());
 
     static BvhBuildConfig defaultConfig() {
         BvhBuildConfig c;
@@ -33,7 +31,7 @@ public:
     SceneView<N> view() const;
     const WideBvh<N>& triangleBvh() const { return triangleBvh_; }
     const std::vector<TriangleBlock<kBlockSize>>& blocks() const { return blocks_; }
-    const Geometry& geometry(uint32_t geomId) const { return *geometries_[geomId]; }
+    const SceneGeometry& geometry() const { return *geometry_; }
     const BuildTimings& timings() const { return timings_; }
     size_t bytes() const;
 
@@ -45,8 +43,8 @@ private:
     std::vector<TriangleBlock<kBlockSize>> blocks_;
     WideBvh<N> userBvh_;
     std::vector<PrimRef> prims_;
-    std::vector<std::unique_ptr<Geometry>> geometries_;
-    std::vector<const Geometry*> geometryPointers_;
+    std::shared_ptr<const SceneGeometry> geometry_;
+    std::vector<const UserGeometry*> userGeometries_;  ///< indexed by geomId; null for triangle meshes
     BuildTimings timings_;
 };
 

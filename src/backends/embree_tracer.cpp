@@ -7,9 +7,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
-#include "backends/embree_user_geometry.h"
 #include "kernels/hit_order.h"
-#include "backends/tracer_factory.h"
 
 namespace wideray {
 namespace {
@@ -18,10 +16,6 @@ constexpr std::pair<EmbreeKernel, const char*> kKernelNames[] = {
     {EmbreeKernel::Intersect1, "rtcIntersect1"},   {EmbreeKernel::Packet4, "rtcIntersect4"},
     {EmbreeKernel::Packet8, "rtcIntersect8"},      {EmbreeKernel::Packet16, "rtcIntersect16"},
     {EmbreeKernel::Stream1M, "rtcIntersect1M"}};
-
-const char* qualityName(RTCBuildQuality q) {
-    return q == RTC_BUILD_QUALITY_LOW ? "low" : q == RTC_BUILD_QUALITY_HIGH ? "high" : "medium";
-}
 
 /// A device only for asking what this Embree build and CPU support; it lives as long as the process.
 RTCDevice queryDevice() {
@@ -174,29 +168,6 @@ void occludedStream(RTCScene scene, RTCIntersectContext& context, std::span<cons
     }
 }
 
-/// Copies of the world mesh in Embree's buffers: shared buffers would tie the tracer's lifetime to
-/// the caller's mesh and need padding past the last vertex for Embree's 16-byte loads.
-void attachTriangles(RTCDevice device, RTCScene scene, const TriangleMesh& world) {
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    void* vertices = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(glm::vec3),
-                                             world.positions.size());
-    void* indices = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(glm::uvec3),
-                                            world.triangles.size());
-    if (vertices && indices) {
-        std::memcpy(vertices, world.positions.data(), world.positions.size() * sizeof(glm::vec3));
-        std::memcpy(indices, world.triangles.data(), world.triangles.size() * sizeof(glm::uvec3));
-    }
-    rtcCommitGeometry(g);
-    rtcAttachGeometryByID(scene, g, 0);
-    rtcReleaseGeometry(g);
-}
-
-EmbreeKernel widestNativePacket() {
-    for (EmbreeKernel k : {EmbreeKernel::Packet16, EmbreeKernel::Packet8, EmbreeKernel::Packet4})
-        if (EmbreeTracer::supports(k)) return k;
-    return EmbreeKernel::Intersect1;
-}
-
 } // namespace
 
 const char* embreeKernelName(EmbreeKernel kernel) {
@@ -205,7 +176,13 @@ const char* embreeKernelName(EmbreeKernel kernel) {
     return "?";
 }
 
-bool EmbreeTracer::supports(EmbreeKernel kernel) {
+std::optional<EmbreeKernel> parseEmbreeKernel(std::string_view name) {
+    for (const auto& [k, n] : kKernelNames)
+        if (name == n) return k;
+    return std::nullopt;
+}
+
+bool embreeSupports(EmbreeKernel kernel) {
     auto property = [](RTCDeviceProperty p) { return rtcGetDeviceProperty(queryDevice(), p) != 0; };
     switch (kernel) {
     case EmbreeKernel::Intersect1: return true;
@@ -217,54 +194,25 @@ bool EmbreeTracer::supports(EmbreeKernel kernel) {
     return false;
 }
 
-EmbreeTracer::EmbreeTracer(const Scene& scene, const TriangleMesh& world, const EmbreeConfig& config)
-    : geometries_(userGeometries(scene)),
-      coherent_(config.coherent.value_or(widestNativePacket())),
-      incoherent_(config.incoherent),
-      quality_(config.quality) {
-    for (EmbreeKernel k : {coherent_, incoherent_})
-        if (!supports(k))
-            throw InputError("embree", "", std::string("this CPU or Embree build cannot run ") + embreeKernelName(k) +
-                                                 " natively");
-    device_.reset(rtcNewDevice(nullptr));
-    if (!device_) throw std::runtime_error("Embree: cannot create a device");
-    // Errors are recorded here and turned into exceptions by check(): throwing from inside Embree's
-    // C API would unwind through frames that do not expect it.
-    rtcSetDeviceErrorFunction(
-        device_.get(), [](void* self, RTCError, const char* message) { static_cast<EmbreeTracer*>(self)->lastError_ = message; },
-        this);
-    rtcSetDeviceMemoryMonitorFunction(
-        device_.get(),
-        [](void* self, ssize_t bytes, bool) {
-            static_cast<EmbreeTracer*>(self)->bytes_ += bytes;
-            return true;
-        },
-        this);
-
-    auto start = std::chrono::steady_clock::now();
-    scene_.reset(rtcNewScene(device_.get()));
-    check("rtcNewScene");
-    rtcSetSceneFlags(scene_.get(), RTC_SCENE_FLAG_NONE);
-    rtcSetSceneBuildQuality(scene_.get(), quality_);
-    if (!world.triangles.empty()) attachTriangles(device_.get(), scene_.get(), world);
-    check("triangle geometry");
-    for (uint32_t geomId = 1; geomId < geometries_.size(); ++geomId)
-        attachUserGeometry(device_.get(), scene_.get(), *geometries_[geomId], geomId);
-    check("user geometry");
-    rtcCommitScene(scene_.get());
-    check("rtcCommitScene");
-    buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+EmbreeKernel widestNativeEmbreePacket() {
+    for (EmbreeKernel k : {EmbreeKernel::Packet16, EmbreeKernel::Packet8, EmbreeKernel::Packet4})
+        if (embreeSupports(k)) return k;
+    return EmbreeKernel::Intersect1;
 }
 
-void EmbreeTracer::check(const char* step) const {
-    if (rtcGetDeviceError(device_.get()) != RTC_ERROR_NONE)
-        throw std::runtime_error(std::string("Embree: ") + step + ": " + lastError_);
+EmbreeTracer::EmbreeTracer(std::shared_ptr<const EmbreeStructure> structure, EmbreeKernel coherent,
+                           EmbreeKernel incoherent)
+    : structure_(std::move(structure)), coherent_(coherent), incoherent_(incoherent) {
+    for (EmbreeKernel k : {coherent_, incoherent_})
+        if (!embreeSupports(k))
+            throw InputError("embree", "", std::string("this CPU or Embree build cannot run ") + embreeKernelName(k) +
+                                                 " natively");
 }
 
 void EmbreeTracer::intersect(std::span<const Ray> rays, std::span<Hit> hits, Coherence coherence,
                              TraversalCost* costs) const {
     RTCIntersectContext context = contextFor(coherence);
-    RTCScene scene = scene_.get();
+    RTCScene scene = structure_->scene();
     switch (kernel(coherence)) {
     case EmbreeKernel::Intersect1: intersectSingle(scene, context, rays, hits); break;
     case EmbreeKernel::Packet4: intersectPackets<4>(scene, context, rays, hits); break;
@@ -277,7 +225,7 @@ void EmbreeTracer::intersect(std::span<const Ray> rays, std::span<Hit> hits, Coh
 
 void EmbreeTracer::occluded(std::span<const Ray> rays, std::span<uint8_t> occluded, Coherence coherence, int) const {
     RTCIntersectContext context = contextFor(coherence);
-    RTCScene scene = scene_.get();
+    RTCScene scene = structure_->scene();
     switch (kernel(coherence)) {
     case EmbreeKernel::Intersect1: occludedSingle(scene, context, rays, occluded); break;
     case EmbreeKernel::Packet4: occludedPackets<4>(scene, context, rays, occluded); break;
@@ -289,7 +237,7 @@ void EmbreeTracer::occluded(std::span<const Ray> rays, std::span<uint8_t> occlud
 
 std::string EmbreeTracer::description() const {
     return std::string("embree ") + embreeKernelName(coherent_) + "/" + embreeKernelName(incoherent_) + ", " +
-           qualityName(quality_) + " quality BVH";
+           structure_->qualityName() + " quality BVH";
 }
 
 } // namespace wideray

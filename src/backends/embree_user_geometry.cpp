@@ -7,7 +7,7 @@
 namespace wideray {
 namespace {
 
-const Geometry& geometryOf(void* userPtr) { return *static_cast<const Geometry*>(userPtr); }
+const UserGeometry& geometryOf(void* userPtr) { return *static_cast<const UserGeometry*>(userPtr); }
 
 Ray rayOf(RTCRayN* rays, unsigned n, unsigned i) {
     return {RTCRayN_org_x(rays, n, i), RTCRayN_org_y(rays, n, i), RTCRayN_org_z(rays, n, i),
@@ -23,7 +23,7 @@ void bounds(const RTCBoundsFunctionArguments* args) {
 }
 
 void intersect(const RTCIntersectFunctionNArguments* args) {
-    const Geometry& geometry = geometryOf(args->geometryUserPtr);
+    const UserGeometry& geometry = geometryOf(args->geometryUserPtr);
     const unsigned n = args->N;
     RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, n);
     RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, n);
@@ -46,7 +46,7 @@ void intersect(const RTCIntersectFunctionNArguments* args) {
 }
 
 void occluded(const RTCOccludedFunctionNArguments* args) {
-    const Geometry& geometry = geometryOf(args->geometryUserPtr);
+    const UserGeometry& geometry = geometryOf(args->geometryUserPtr);
     const unsigned n = args->N;
     for (unsigned i = 0; i < n; ++i) {
         if (!args->valid[i]) continue;
@@ -59,10 +59,10 @@ void occluded(const RTCOccludedFunctionNArguments* args) {
 
 } // namespace
 
-void attachUserGeometry(RTCDevice device, RTCScene scene, const Geometry& geometry, uint32_t geomId) {
+void attachUserGeometry(RTCDevice device, RTCScene scene, const UserGeometry& geometry, uint32_t geomId) {
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(g, geometry.primitiveCount());
-    rtcSetGeometryUserData(g, const_cast<Geometry*>(&geometry));
+    rtcSetGeometryUserData(g, const_cast<UserGeometry*>(&geometry));
     rtcSetGeometryBoundsFunction(g, bounds, nullptr);
     rtcSetGeometryIntersectFunction(g, intersect);
     rtcSetGeometryOccludedFunction(g, occluded);

@@ -1,13 +1,12 @@
 #pragma once
-// The accelerator interface: what the renderer and the benchmarks trace batches of rays through.
-// Implemented by our kernels over the wide BVH and by the Embree backend; kd-trees and grids fit here.
+// The tracer interface: what the renderer and the benchmarks trace batches of rays through. A tracer
+// is a cheap object over an acceleration structure (backends/structure.h) and a choice of kernels.
 #include <cstdint>
 #include <span>
 #include <string>
-#include <utility>
 
-#include "core/geometry.h"
 #include "core/ray.h"
+#include "geometry/scene_geometry.h"
 
 namespace wideray {
 
@@ -23,14 +22,14 @@ public:
     virtual void intersect(std::span<const Ray> rays, std::span<Hit> hits, Coherence coherence,
                            TraversalCost* costs = nullptr) const = 0;
     /// occluded[i] = 1 if anything lies within [tnear, tfar] of ray i. `depth` is the recursion depth
-    /// the shadow rays start from, which picks the shadow cache a tracer may keep (-1: none).
+    /// the shadow rays start from, which a kernel may use to keep state per depth (-1: none).
     virtual void occluded(std::span<const Ray> rays, std::span<uint8_t> occluded, Coherence coherence,
                           int depth = -1) const = 0;
 
-    /// The geometry a hit's geomId names (geomId 0, the triangles, is resolved by the caller).
-    virtual const Geometry& geometry(uint32_t geomId) const = 0;
-    /// Shadow-cache queries and hits so far; zeros for a tracer without one.
-    virtual std::pair<uint64_t, uint64_t> shadowCacheStats() const { return {0, 0}; }
+    /// The geometry the hits' geomIds name.
+    virtual const SceneGeometry& geometry() const = 0;
+    /// What the kernels' own state (such as a cache) did so far, one line per item; empty if nothing.
+    virtual std::string statsReport() const { return {}; }
     virtual std::string description() const = 0;
 };
 

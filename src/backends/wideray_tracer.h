@@ -1,13 +1,14 @@
 #pragma once
-// Our tracer: the scene's wide BVH traced by the kernels chosen for coherent and incoherent rays.
+// Our tracer: a wide BVH traced by the kernels chosen for coherent and incoherent rays.
 #include <memory>
 #include <vector>
 
+#include <fmt/core.h>
 #include <tbb/task_arena.h>
 
 #include "accel/scene_accel.h"
 #include "backends/tracer.h"
-#include "kernels/kernel_set.h"
+#include "kernels/kernel_registry.h"
 
 namespace wideray {
 
@@ -15,10 +16,12 @@ template <int N>
 class WiderayTracer final : public Tracer {
 public:
     /// With `shadowCache`, incoherent shadow rays that name their depth go through the kernel's
-    /// last-occluder cache (one per worker thread and depth), where the kernel has one.
-    WiderayTracer(std::shared_ptr<const SceneAccel<N>> accel, KernelSet<N> coherent, KernelSet<N> incoherent,
-                  bool shadowCache = false)
-        : accel_(std::move(accel)), view_(accel_->view()), coherent_(coherent), incoherent_(incoherent),
+    /// last-occluder cache (one per worker thread and depth), where the kernel has one. `owner`
+    /// keeps the structure that `accel` belongs to alive.
+    WiderayTracer(std::shared_ptr<const void> owner, const SceneAccel<N>& accel, Kernel<N> coherent,
+                  Kernel<N> incoherent, std::string name, bool shadowCache)
+        : owner_(std::move(owner)), accel_(accel), view_(accel.view()), coherent_(coherent), incoherent_(incoherent),
+          name_(std::move(name)),
           caches_(shadowCache && incoherent.occludedCached
                       ? size_t(tbb::this_task_arena::max_concurrency()) * kCachedDepths
                       : 0) {}
@@ -39,26 +42,27 @@ public:
         kernel(coherence).occluded(view_, rays.data(), occluded.data(), rays.size());
     }
 
-    /// Queries and hits of the shadow caches so far (zeros without a cache).
-    std::pair<uint64_t, uint64_t> shadowCacheStats() const override {
+    const SceneGeometry& geometry() const override { return accel_.geometry(); }
+    std::string statsReport() const override {
         uint64_t queries = 0, hits = 0;
         for (const ShadowCache& c : caches_) {
             queries += c.queries;
             hits += c.hits;
         }
-        return {queries, hits};
+        if (queries == 0) return {};
+        return fmt::format("shadow cache: {} of {} shadow rays answered by the cached occluder ({:.1f}%)", hits,
+                           queries, 100.0 * double(hits) / double(queries));
     }
-    const Geometry& geometry(uint32_t geomId) const override { return accel_->geometry(geomId); }
-    std::string description() const override {
-        return std::string("wideray BVH") + std::to_string(N) + " " + coherent_.name + "/" + incoherent_.name;
-    }
+    std::string description() const override { return name_; }
 
 private:
-    const KernelSet<N>& kernel(Coherence c) const { return c == Coherence::Coherent ? coherent_ : incoherent_; }
+    const Kernel<N>& kernel(Coherence c) const { return c == Coherence::Coherent ? coherent_ : incoherent_; }
 
-    std::shared_ptr<const SceneAccel<N>> accel_;
+    std::shared_ptr<const void> owner_;
+    const SceneAccel<N>& accel_;
     SceneView<N> view_;
-    KernelSet<N> coherent_, incoherent_;
+    Kernel<N> coherent_, incoherent_;
+    std::string name_;
     static constexpr int kCachedDepths = 16;
     mutable std::vector<ShadowCache> caches_;  ///< [thread][depth]; each touched by its thread alone
 };

@@ -12,16 +12,15 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include "backends/backend_registry.h"
+#include "backends/embree_tracer.h"
+#include "backends/wideray_structure.h"
 #include "cli/commands.h"
-#include "render/bench_rays.h"
 #include "core/error.h"
 #include "core/fp_mode.h"
 #include "io/mesh_framing.h"
-#include "accel/scene_accel.h"
-#include "backends/embree_tracer.h"
-#include "kernels/isa_kernels.h"
-#include "kernels/reference_kernel.h"
-#include "backends/tracer_factory.h"
+#include "kernels/kernel_registry.h"
+#include "render/bench_rays.h"
 
 namespace wideray::cli {
 namespace {
@@ -82,46 +81,39 @@ template <int N>
 std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, bool allIsas) {
     std::vector<Candidate> out;
     SceneView<N> view = accel.view();
-    out.push_back({"wideray", "scalar", "baseline", "rtcIntersect1",
-                   [view](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
-                       if (h) reference::intersect<N>(view, r, h, n, nullptr);
-                       else reference::occluded<N>(view, r, o, n);
-                   }});
     for (Isa isa : {Isa::Sse42, Isa::Avx2, Isa::Avx512}) {
         if (!cpuSupports(isa) || (!allIsas && isa != bestIsa())) continue;
-        IsaKernelTable<N> table = kernelTable<N>(isa);
-        const std::pair<KernelSet<N>, const char*> kernels[] = {{table.single, "rtcIntersect1"},
-                                                                {table.packet4, "rtcIntersect4"},
-                                                                {table.packet8, "rtcIntersect8"},
-                                                                {table.packet16, "rtcIntersect16"},
-                                                                {table.packet256, "rtcIntersect16"},
-                                                                {table.stream, "rtcIntersect1M"},
-                                                                {table.drst, "rtcIntersect1M"}};
-        // The shadow cache: one per task, so that each chunk of rays starts cold (as a renderer tile would).
-        if (table.single.occludedCached)
-            out.push_back({"wideray", "single+cache", isaName(isa), "rtcIntersect1",
-                           [view, k = table.single](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
-                               if (h) return;
-                               ShadowCache cache;
-                               k.occludedCached(view, r, o, n, cache);
-                           }});
-        for (const auto& [k, counterpart] : kernels) {
-            if (!k.intersect) continue;
-            out.push_back({"wideray", k.name, isaName(isa), counterpart, [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
-                               if (h) k.intersect(view, r, h, n, nullptr);
-                               else k.occluded(view, r, o, n);
-                           }});
+        for (const Kernel<N>& k : kernelTable<N>(isa).rows) {
+            if (!k.available()) continue;
+            const bool reference = std::string_view(k.name) == "scalar";  // baseline code: measured once
+            if (reference && isa != bestIsa()) continue;
+            auto trace = [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
+                if (h) k.intersect(view, r, h, n, nullptr);
+                else k.occluded(view, r, o, n);
+            };
+            out.push_back({"wideray", k.name, reference ? "baseline" : isaName(isa), k.embreeCounterpart, trace});
+            // The shadow cache: one per task, so that each chunk of rays starts cold (as a renderer tile would).
+            if (k.occludedCached)
+                out.push_back({"wideray", std::string(k.name) + "+cache", isaName(isa), k.embreeCounterpart,
+                               [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
+                                   if (h) return;
+                                   ShadowCache cache;
+                                   k.occludedCached(view, r, o, n, cache);
+                               }});
         }
     }
     return out;
 }
 
-using EmbreeEntry = std::pair<EmbreeKernel, std::shared_ptr<EmbreeTracer>>;
-
-std::vector<Candidate> embreeCandidates(const std::vector<EmbreeEntry>& tracers) {
+/// Each of Embree's entry points this CPU runs natively, over one Embree structure.
+std::vector<Candidate> embreeCandidates(const Structure& embree) {
     std::vector<Candidate> out;
-    for (const auto& [kernel, tracer] : tracers) {
-        out.push_back({"embree", embreeKernelName(kernel), "embree", "", [tracer = tracer](const Ray* r, size_t n, Hit* h, uint8_t* o, bool coherent) {
+    for (EmbreeKernel kernel : {EmbreeKernel::Intersect1, EmbreeKernel::Packet4, EmbreeKernel::Packet8,
+                                EmbreeKernel::Packet16, EmbreeKernel::Stream1M}) {
+        if (!embreeSupports(kernel)) continue;
+        std::shared_ptr<const Tracer> tracer = embree.tracer({embreeKernelName(kernel)});
+        out.push_back({"embree", embreeKernelName(kernel), "embree", "",
+                       [tracer](const Ray* r, size_t n, Hit* h, uint8_t* o, bool coherent) {
                            Coherence c = coherent ? Coherence::Coherent : Coherence::Incoherent;
                            if (h) tracer->intersect({r, n}, {h, n}, c);
                            else tracer->occluded({r, n}, {o, n}, c);
@@ -136,42 +128,33 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
               int threads) {
     auto [width, height] = parseSize(args.size);
     Scene scene = loadSceneOrMesh(input, width, height);
-    TriangleMesh world = flattenTriangles(scene);
+    auto geometry = std::make_shared<const SceneGeometry>(scene);
     const std::string name = shortName(input);
-    fmt::print(stderr, "{}: {} triangles, building BVHs...\n", name, world.triangles.size());
+    fmt::print(stderr, "{}: {} triangles, building BVHs...\n", name, geometry->triangleCount());
 
-    auto start = Clock::now();
-    auto accel = std::make_shared<SceneAccel<8>>(world, userGeometries(scene));
-    double ourSeconds = std::chrono::duration<double>(Clock::now() - start).count();
-    builds.push_back({{"scene", name}, {"backend", "wideray"}, {"quality", "sah-binned-bvh8"}, {"seconds", ourSeconds},
-                      {"bytes", accel->bytes()}});
-    for (RTCBuildQuality quality : {RTC_BUILD_QUALITY_MEDIUM, RTC_BUILD_QUALITY_HIGH}) {
-        EmbreeTracer e(scene, world, {quality, EmbreeKernel::Intersect1, EmbreeKernel::Intersect1});
-        builds.push_back({{"scene", name}, {"backend", "embree"},
-                          {"quality", quality == RTC_BUILD_QUALITY_HIGH ? "high" : "medium"},
-                          {"seconds", e.buildSeconds()}, {"bytes", e.bytes()}});
+    // Each structure is built once: ours, and Embree at medium and high quality.
+    auto ours = std::static_pointer_cast<const WideBvhStructure<8>>(buildWideBvh(geometry, {}));
+    builds.push_back({{"scene", name}, {"backend", "wideray"}, {"quality", "sah-binned-bvh8"},
+                      {"seconds", ours->buildSeconds()}, {"bytes", ours->bytes()}});
+    std::shared_ptr<const Structure> embreeMedium;
+    for (const char* quality : {"medium", "high"}) {
+        std::shared_ptr<const Structure> e = findBackend("embree").build(geometry, {8, quality});
+        builds.push_back({{"scene", name}, {"backend", "embree"}, {"quality", quality},
+                          {"seconds", e->buildSeconds()}, {"bytes", e->bytes()}});
+        if (std::string_view(quality) == "medium") embreeMedium = e;
     }
     for (const auto& b : builds)
         if (b["scene"] == name)
             fmt::print("{}: build {} {}: {:.1f} ms, {:.1f} MB\n", name, std::string(b["backend"]),
                        std::string(b["quality"]), double(b["seconds"]) * 1e3, double(b["bytes"]) / 1e6);
 
-    // One Embree scene per entry point, all at the default build quality.
-    std::vector<EmbreeEntry> embree;
-    for (EmbreeKernel k : {EmbreeKernel::Intersect1, EmbreeKernel::Packet4, EmbreeKernel::Packet8,
-                           EmbreeKernel::Packet16, EmbreeKernel::Stream1M})
-        if (args.backend != "wideray" && EmbreeTracer::supports(k))
-            embree.push_back({k, std::make_shared<EmbreeTracer>(scene, world, EmbreeConfig{RTC_BUILD_QUALITY_MEDIUM, k, k})});
+    BenchRays rays = makeBenchRays(scene, *ours->tracer({"scalar"}), width, height);
 
-    TracerConfig referenceConfig;
-    referenceConfig.kernel = KernelChoice::Scalar;
-    BuiltTracer reference = buildWiderayTracer(scene, world, referenceConfig);
-    BenchRays rays = makeBenchRays(scene, world, *reference.tracer, width, height);
-
+    // Embree's kernels are measured on its default build quality.
     std::vector<Candidate> candidates;
-    if (args.backend != "embree") candidates = ourCandidates(*accel, args.allIsas);
+    if (args.backend != "embree") candidates = ourCandidates(ours->accel(), args.allIsas);
     if (args.backend != "wideray")
-        for (Candidate& c : embreeCandidates(embree)) candidates.push_back(std::move(c));
+        for (Candidate& c : embreeCandidates(*embreeMedium)) candidates.push_back(std::move(c));
 
     fmt::print("\n{:<28} {:<8} {:<8} {:<15} {:<8} {:>10} {:>9} {:>10}\n", "scene", "rays", "backend", "kernel", "isa",
                "Mrays/s", "hits", "vs embree");
@@ -199,7 +182,7 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
             }
             fmt::print("{:<28} {:<8} {:<8} {:<15} {:<8} {:>10.2f} {:>9} {}\n", name, kindName, c->backend, kernel,
                        c->isa, m.mraysPerSecond, m.hits, versus);
-            results.push_back({{"scene", name}, {"triangles", world.triangles.size()}, {"ray_kind", kindName},
+            results.push_back({{"scene", name}, {"triangles", geometry->triangleCount()}, {"ray_kind", kindName},
                                {"backend", c->backend}, {"kernel", kernel}, {"isa", c->isa}, {"threads", threads},
                                {"rays", set.size()}, {"hits", m.hits}, {"mrays_per_s", m.mraysPerSecond},
                                {"runs", args.runs}});

@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "backends/structure.h"
+
 namespace wideray::cli {
 
 /// Options shared by render and bench: threads, the kernel and its ISA, the BVH width.
@@ -18,6 +20,8 @@ struct EngineOptions {
 };
 
 void addEngineOptions(CLI::App& app, EngineOptions& options);
+/// The kernels the options ask for.
+KernelChoice kernelChoice(const EngineOptions& options);
 
 void addRenderCommand(CLI::App& app, int& exitCode);
 void addInfoCommand(CLI::App& app, int& exitCode);

@@ -1,18 +1,27 @@
 #include <cstdio>
 
+#include <fmt/core.h>
+
 #include "cli/commands.h"
+#include "kernels/kernel_registry.h"
 
 namespace wideray::cli {
 
 void addEngineOptions(CLI::App& app, EngineOptions& options) {
     app.add_option("--threads", options.threads, "Worker threads (default: all hardware threads)")
         ->check(CLI::Range(1, 4096));
-    app.add_option("--kernel", options.kernel,
-                   "Traversal kernel: scalar (the reference), single (one ray, SIMD across children), "
-                   "packet4, packet8, packet16, packet256 (256-ray packets with interval culling), stream, drst "
-                   "(streams in which each ray keeps its own order), or auto (packets for coherent rays, the fastest measured kernel for incoherent ones)")
-        ->check(CLI::IsMember({"scalar", "single", "packet4", "packet8", "packet16", "packet256", "stream", "drst", "auto"}))
-        ->capture_default_str();
+    // The kernels are the registry's rows (every table has the same rows), plus "auto".
+    const KernelTable<8> table = kernelTable<8>(Isa::Sse42);
+    std::vector<std::string> names;
+    std::string help = "Traversal kernel:";
+    for (const Kernel<8>& k : table.rows) {
+        names.push_back(k.name);
+        help += fmt::format(" {} ({}{});", k.name, k.description,
+                            k.minimumIsa == Isa::Sse42 ? "" : fmt::format(", needs {}", isaName(k.minimumIsa)));
+    }
+    names.push_back("auto");
+    help += " or auto (packets for coherent rays, the fastest measured kernel for incoherent ones)";
+    app.add_option("--kernel", options.kernel, help)->check(CLI::IsMember(names))->capture_default_str();
     app.add_option("--isa", options.isa,
                    "Instruction set of the kernels: sse42, avx2, avx512 or auto (the best this CPU has); "
                    "asking for one the CPU lacks is an error")
@@ -26,6 +35,14 @@ void addEngineOptions(CLI::App& app, EngineOptions& options) {
     app.add_option("--bvh-width", options.bvhWidth, "Children per BVH node: 4 or 8")
         ->check(CLI::IsMember({4, 8}))
         ->capture_default_str();
+}
+
+KernelChoice kernelChoice(const EngineOptions& options) {
+    KernelChoice choice;
+    choice.kernel = options.kernel;
+    if (options.isa != "auto") choice.isa = parseIsa(options.isa);
+    choice.shadowCache = options.shadowCache == "on";
+    return choice;
 }
 
 std::pair<int, int> parseSize(const std::string& text) {

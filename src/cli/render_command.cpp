@@ -7,15 +7,14 @@
 #include <fmt/core.h>
 #include <tbb/global_control.h>
 
+#include "backends/backend_registry.h"
 #include "cli/commands.h"
 #include "core/error.h"
-#include "render/image_difference.h"
 #include "core/fp_mode.h"
-#include "io/mesh_framing.h"
 #include "io/image_io.h"
+#include "io/mesh_framing.h"
+#include "render/image_difference.h"
 #include "render/renderer.h"
-#include "backends/embree_tracer.h"
-#include "backends/tracer_factory.h"
 
 namespace wideray::cli {
 namespace {
@@ -38,15 +37,6 @@ Aov parseAov(const std::string& name) {
     return Aov::Color;
 }
 
-TracerConfig makeTracerConfig(const EngineOptions& engine) {
-    TracerConfig config;
-    config.bvhWidth = engine.bvhWidth;
-    config.kernel = *parseKernel(engine.kernel);
-    if (engine.isa != "auto") config.isa = parseIsa(engine.isa);
-    config.shadowCache = engine.shadowCache == "on";
-    return config;
-}
-
 std::filesystem::path outputPath(const RenderArgs& args, const std::filesystem::path& scene) {
     std::string name = scene.stem().string() + (args.aov == "color" ? "" : "_" + args.aov) + ".png";
     if (args.output.empty()) return std::filesystem::path("out") / name;
@@ -65,29 +55,29 @@ void normalizeDepth(Image& image, const std::filesystem::path& path) {
 }
 
 /// The tracer the backend builds, what its build is called in the report ("BVH8") and the engine
-/// that traces (description, and our ISA).
+/// that traces.
 struct BackendTracer {
     std::unique_ptr<Tracer> tracer;
     std::string accelName, engine;
 };
 
-BackendTracer buildTracer(const RenderArgs& args, const Scene& scene, const TriangleMesh& world) {
-    if (parseBackend(args.backend) == Backend::Embree) {
-        auto tracer = std::make_unique<EmbreeTracer>(scene, world);
-        std::string engine = tracer->description();
-        return {std::move(tracer), "Embree BVH", engine};
-    }
-    BuiltTracer built = buildWiderayTracer(scene, world, makeTracerConfig(args.engine));
-    std::string engine = built.tracer->description() + " " + isaName(built.isa);
-    return {std::move(built.tracer), "BVH" + std::to_string(args.engine.bvhWidth), engine};
+BackendTracer buildTracer(const RenderArgs& args, const std::string& backendName,
+                          std::shared_ptr<const SceneGeometry> geometry) {
+    StructureOptions options;
+    options.bvhWidth = args.engine.bvhWidth;
+    std::shared_ptr<const Structure> structure = findBackend(backendName).build(std::move(geometry), options);
+    // --kernel, --isa and --bvh-width choose among our kernels; Embree traces with its own choice.
+    std::unique_ptr<Tracer> tracer = structure->tracer(backendName == "wideray" ? kernelChoice(args.engine) : KernelChoice{});
+    std::string engine = tracer->description();
+    return {std::move(tracer), structure->name(), engine};
 }
 
 void renderOne(const RenderArgs& args, const std::string& sceneFile) {
     using Clock = std::chrono::steady_clock;
     Scene scene = loadSceneOrMesh(sceneFile, 1024, 1024);
     auto start = Clock::now();
-    TriangleMesh world = flattenTriangles(scene);
-    BackendTracer built = buildTracer(args, scene, world);
+    auto geometry = std::make_shared<const SceneGeometry>(scene);
+    BackendTracer built = buildTracer(args, args.backend, geometry);
     double buildSeconds = std::chrono::duration<double>(Clock::now() - start).count();
 
     RenderOptions options;
@@ -97,7 +87,7 @@ void renderOne(const RenderArgs& args, const std::string& sceneFile) {
     options.progress = true;
     options.label = sceneFile;
     RenderStats stats;
-    Image image = render(scene, world, *built.tracer, options, stats);
+    Image image = render(scene, *built.tracer, options, stats);
 
     std::filesystem::path out = outputPath(args, sceneFile);
     if (options.aov == Aov::Depth) normalizeDepth(image, out);
@@ -105,19 +95,15 @@ void renderOne(const RenderArgs& args, const std::string& sceneFile) {
     fmt::print("{}: {}x{}, {} spp, {} triangles, {} build {:.1f} ms, render {:.1f} ms, {} rays, "
                "{:.2f} Mrays/s ({}) -> {}\n",
                sceneFile, image.width, image.height,
-               args.spp > 0 ? args.spp : scene.image.samplesPerPixel, world.triangles.size(), built.accelName,
+               args.spp > 0 ? args.spp : scene.image.samplesPerPixel, geometry->triangleCount(), built.accelName,
                buildSeconds * 1e3, stats.seconds * 1e3, stats.totalRays(),
                stats.mraysPerSecond(), built.engine, out.string());
     if (options.aov == Aov::Cost) fmt::print("  cost heatmap: max {} nodes + primitives per pixel\n", stats.maxCost);
-    if (auto [queries, hits] = built.tracer->shadowCacheStats(); queries > 0)
-        fmt::print("  shadow cache: {} of {} shadow rays answered by the cached occluder ({:.1f}%)\n", hits, queries,
-                   100.0 * double(hits) / double(queries));
+    if (std::string report = built.tracer->statsReport(); !report.empty()) fmt::print("  {}\n", report);
     if (args.compareBackends) {
-        RenderArgs otherArgs = args;
-        otherArgs.backend = parseBackend(args.backend) == Backend::Embree ? "wideray" : "embree";
-        BackendTracer other = buildTracer(otherArgs, scene, world);
+        BackendTracer other = buildTracer(args, args.backend == "embree" ? "wideray" : "embree", geometry);
         RenderStats otherStats;
-        Image otherImage = render(scene, world, *other.tracer, options, otherStats);
+        Image otherImage = render(scene, *other.tracer, options, otherStats);
         if (options.aov == Aov::Depth) normalizeDepth(otherImage, out);
         ImageDifference d = compareImages(image, otherImage, 1.0f / 255.0f);
         fmt::print("  vs {} ({:.2f} Mrays/s): mean |difference| {:.6f}, max {:.4f}, {} of {} pixels differ by more "

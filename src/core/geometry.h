@@ -1,11 +1,14 @@
 #pragma once
-// The geometry interface: how primitives other than the BVH's triangle blocks (spheres now; analytic
-// primitives and CSG later) are bounded, intersected and shaded, without special cases in the kernels.
+// The geometry interface: every kind of primitive a scene holds (triangle meshes, spheres; analytic
+// primitives and CSG later) says how it is bounded and shaded. Triangle meshes hand their triangles
+// to the acceleration structures, which store them in their own layouts; every other geometry is
+// user geometry and intersects rays itself.
 #include <cstdint>
 
 #include <glm/glm.hpp>
 
 #include "core/bounds.h"
+#include "core/mesh.h"
 #include "core/ray.h"
 
 namespace wideray {
@@ -16,16 +19,33 @@ struct SurfacePoint {
     glm::vec3 shadingNormal;
     glm::vec2 uv{0.0f};
     uint32_t material = 0;
+    uint32_t instance = kInvalidId;  ///< the scene instance the primitive belongs to, where it has one
 };
+
+class UserGeometry;
 
 class Geometry {
 public:
     virtual ~Geometry() = default;
     virtual uint32_t primitiveCount() const = 0;
     virtual Bounds3f primitiveBounds(uint32_t primId) const = 0;
+    /// The box around every primitive.
+    virtual Bounds3f bounds() const = 0;
+    virtual SurfacePoint surface(const Ray& ray, const Hit& hit) const = 0;
+
+    /// The world-space triangles of a triangle mesh; null for user geometry.
+    virtual const TriangleMesh* triangles() const { return nullptr; }
+    /// This geometry as user geometry; null for triangle meshes.
+    virtual const UserGeometry* user() const { return nullptr; }
+};
+
+/// Geometry whose rays the kernels hand to the geometry itself, one primitive at a time.
+class UserGeometry : public Geometry {
+public:
     /// Returns true and writes t, u, v when the ray hits the primitive with tnear <= t <= tfar.
     virtual bool intersect(const Ray& ray, uint32_t primId, float tfar, float& t, float& u, float& v) const = 0;
-    virtual SurfacePoint surface(const Ray& ray, const Hit& hit) const = 0;
+    const UserGeometry* user() const final { return this; }
+    Bounds3f bounds() const override;
 };
 
 } // namespace wideray

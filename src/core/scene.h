@@ -1,6 +1,7 @@
 #pragma once
 // A scene as described by a scene file: camera, image settings, lights, materials and objects.
-// Meshes are stored once and placed by instances; `flattenTriangles` expands them to world space.
+// Meshes are stored once and placed by instances; geometry/scene_geometry.h builds the geometry
+// that renderers and acceleration structures use from it.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -101,8 +102,5 @@ struct Scene {
     std::vector<MeshInstance> instances;
     std::vector<Sphere> spheres;
 };
-
-/// All instanced triangles in world space, in one mesh; faceMaterial indexes scene.materials.
-TriangleMesh flattenTriangles(const Scene& scene);
 
 } // namespace wideray

@@ -7,7 +7,7 @@
 
 namespace wideray {
 
-class SphereGeometry final : public Geometry {
+class SphereGeometry final : public UserGeometry {
 public:
     explicit SphereGeometry(std::vector<Sphere> spheres) : spheres_(std::move(spheres)) {}
 

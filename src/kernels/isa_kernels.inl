@@ -1,7 +1,8 @@
 // The kernels of one ISA, compiled from the same source for each: a translation unit in
 // kernels/isa/ defines WIDERAY_ISA (the namespace) and WIDERAY_ISA_TABLE (the table's name) and
 // includes this file with its ISA's compiler flags.
-#include "kernels/isa_kernels.h"
+#include "kernels/kernel_registry.h"
+#include "kernels/reference_kernel.h"
 #include "kernels/traverse_large_packet.h"
 #include "kernels/traverse_stream.h"
 
@@ -121,27 +122,40 @@ void streamOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occlude
                                                nullptr, occluded + i, ws);
 }
 
+/// A K-wide packet kernel where this ISA's vectors are that wide, null entry points elsewhere.
+template <int N, int K>
+Kernel<N> packetKernel(const char* name, const char* description, const char* counterpart, Isa minimumIsa) {
+    Kernel<N> k{name, description, counterpart, minimumIsa};
+    if constexpr (K <= kMaxWidth) {
+        k.intersect = &packetIntersect<N, K>;
+        k.occluded = &packetOccluded<N, K>;
+    }
+    return k;
+}
+
 template <int N>
-IsaKernelTable<N> makeTable() {
-    IsaKernelTable<N> t;
-    t.single = {"single", &singleIntersect<N>, &singleOccluded<N>, &singleOccludedCached<N>};
-    t.packet4 = {"packet4", &packetIntersect<N, 4>, &packetOccluded<N, 4>};
-#if defined(__AVX2__)
-    t.packet8 = {"packet8", &packetIntersect<N, 8>, &packetOccluded<N, 8>};
-#endif
-#if defined(__AVX512F__)
-    t.packet16 = {"packet16", &packetIntersect<N, 16>, &packetOccluded<N, 16>};
-#endif
-    t.packet256 = {"packet256", &largePacketIntersect<N>, &largePacketOccluded<N>};
-    t.stream = {"stream", &streamIntersect<N, StreamOrder::ByList>, &streamOccluded<N, StreamOrder::ByList>};
-    t.drst = {"drst", &streamIntersect<N, StreamOrder::ByRay>, &streamOccluded<N, StreamOrder::ByRay>};
-    return t;
+KernelTable<N> makeTable() {
+    return {{{
+        {"scalar", "the reference: one ray, plain loops over the children and the triangles, baseline ISA",
+         "rtcIntersect1", Isa::Sse42, &reference::intersect<N>, &reference::occluded<N>},
+        {"single", "one ray, SIMD box test of all children, SIMD test of a leaf's 4-triangle blocks", "rtcIntersect1",
+         Isa::Sse42, &singleIntersect<N>, &singleOccluded<N>, &singleOccludedCached<N>},
+        packetKernel<N, 4>("packet4", "4 rays (2x2 pixels) walk the tree together", "rtcIntersect4", Isa::Sse42),
+        packetKernel<N, 8>("packet8", "8 rays (4x2 pixels) walk the tree together", "rtcIntersect8", Isa::Avx2),
+        packetKernel<N, 16>("packet16", "16 rays (4x4 pixels) walk the tree together", "rtcIntersect16", Isa::Avx512),
+        {"packet256", "256 rays (16x16 pixels): inner nodes tested once by interval arithmetic, leaves per sub-packet",
+         "rtcIntersect16", Isa::Sse42, &largePacketIntersect<N>, &largePacketOccluded<N>},
+        {"stream", "sorted streams of up to 4096 rays, filtered node by node into one list per child",
+         "rtcIntersect1M", Isa::Sse42, &streamIntersect<N, StreamOrder::ByList>, &streamOccluded<N, StreamOrder::ByList>},
+        {"drst", "sorted streams in which each ray visits its children in its own order (Dynamic Ray Stream Traversal)",
+         "rtcIntersect1M", Isa::Sse42, &streamIntersect<N, StreamOrder::ByRay>, &streamOccluded<N, StreamOrder::ByRay>},
+    }}};
 }
 
 } // namespace
 } // namespace WIDERAY_ISA
 
-template <> IsaKernelTable<4> WIDERAY_ISA_TABLE<4>() { return makeTable<4>(); }
-template <> IsaKernelTable<8> WIDERAY_ISA_TABLE<8>() { return makeTable<8>(); }
+template <> KernelTable<4> WIDERAY_ISA_TABLE<4>() { return makeTable<4>(); }
+template <> KernelTable<8> WIDERAY_ISA_TABLE<8>() { return makeTable<8>(); }
 
 } // namespace wideray

@@ -7,7 +7,6 @@
 #include "core/bounds.h"
 #include "render/camera.h"
 #include "core/random.h"
-#include "render/surface.h"
 #include "render/tile_order.h"
 
 namespace wideray {
@@ -51,14 +50,9 @@ std::vector<Ray> primaryRays(const Scene& scene, int width, int height) {
     return rays;
 }
 
-BenchRays makeBenchRays(const Scene& scene, const TriangleMesh& world, const Tracer& reference, int width, int height) {
+BenchRays makeBenchRays(const Scene& scene, const Tracer& reference, int width, int height) {
     BenchRays out;
-    Bounds3f bounds;
-    for (const glm::vec3& p : world.positions) bounds.grow(p);
-    for (const Sphere& s : scene.spheres) {
-        bounds.grow(s.center - glm::vec3(s.radius));
-        bounds.grow(s.center + glm::vec3(s.radius));
-    }
+    const Bounds3f bounds = reference.geometry().bounds();
     out.sceneRadius = bounds.empty() ? 1.0f : 0.5f * glm::length(bounds.extent());
     const float tnear = 1e-3f * out.sceneRadius;
 
@@ -86,7 +80,7 @@ BenchRays makeBenchRays(const Scene& scene, const TriangleMesh& world, const Tra
     for (size_t i = 0; i < hits.size(); ++i) {
         if (!hits[i].valid()) continue;
         const Ray& ray = out.primary[i];
-        SurfacePoint sp = surfaceAt(world, reference, ray, hits[i]);
+        SurfacePoint sp = reference.geometry().surface(ray, hits[i]);
         glm::vec3 dir(ray.dx, ray.dy, ray.dz);
         glm::vec3 toLight = light - sp.position;
         float dist = glm::length(toLight);

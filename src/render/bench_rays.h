@@ -25,7 +25,7 @@ struct BenchRays {
 };
 
 /// Primary hits come from `reference`, whose hits define the secondary rays.
-BenchRays makeBenchRays(const Scene& scene, const TriangleMesh& world, const Tracer& reference, int width, int height);
+BenchRays makeBenchRays(const Scene& scene, const Tracer& reference, int width, int height);
 
 /// Camera rays of a width x height image in the renderer's order (tiles in Hilbert order, pixels in
 /// Morton order inside a tile), through pixel centers.

@@ -15,7 +15,6 @@
 #include "render/camera.h"
 #include "render/heatmap.h"
 #include "core/random.h"
-#include "render/surface.h"
 #include "shading/path_state.h"
 #include "render/tile_order.h"
 #include "shading/beer.h"
@@ -64,15 +63,9 @@ private:
     bool printed_ = false;
 };
 
-/// The box around the scene's objects; with `withLights`, around its lights' positions too.
-Bounds3f sceneBounds(const TriangleMesh& world, const Scene& scene, bool withLights) {
-    Bounds3f b;
-    for (const glm::vec3& p : world.positions) b.grow(p);
-    for (const Sphere& s : scene.spheres) {
-        b.grow(s.center - glm::vec3(s.radius));
-        b.grow(s.center + glm::vec3(s.radius));
-    }
-    if (!withLights) return b;
+/// The box around the scene's objects and its lights' positions.
+Bounds3f boundsWithLights(const Bounds3f& objects, const Scene& scene) {
+    Bounds3f b = objects;
     for (const Light& light : scene.lights) {
         if (light.type == LightType::Directional) continue;
         b.grow(light.position - glm::vec3(light.radius));
@@ -109,16 +102,16 @@ glm::vec3 mediumTransmittance(const Material& material, float distance) {
 
 } // namespace
 
-Image render(const Scene& scene, const TriangleMesh& world, const Tracer& tracer, const RenderOptions& options,
-             RenderStats& stats) {
+Image render(const Scene& scene, const Tracer& tracer, const RenderOptions& options, RenderStats& stats) {
     const int width = options.width > 0 ? options.width : scene.image.width;
     const int height = options.height > 0 ? options.height : scene.image.height;
     const int spp = options.samplesPerPixel > 0 ? options.samplesPerPixel : scene.image.samplesPerPixel;
     const int tileSize = options.tileSize;
     const CameraModel camera(scene.camera, width, height);
-    const Bounds3f objects = sceneBounds(world, scene, false);
+    const SceneGeometry& geometry = tracer.geometry();
+    const Bounds3f objects = geometry.bounds();
     const float epsilon = 1e-4f * (objects.empty() ? 1.0f : glm::length(objects.extent()));
-    const FogMedium fog(scene.fog, sceneBounds(world, scene, true));
+    const FogMedium fog(scene.fog, boundsWithLights(objects, scene));
     const ShadingContext shading{scene, fog, epsilon};
     const std::vector<TileRect> tiles = hilbertTiles(width, height, tileSize);
     const std::vector<uint32_t> morton = mortonPixelOrder(tileSize);
@@ -168,7 +161,7 @@ Image render(const Scene& scene, const TriangleMesh& world, const Tracer& tracer
             } else if (options.aov == Aov::Depth) {
                 out[0] += hit.valid() ? hit.t * sampleWeight : 0.0f;
             } else if (hit.valid()) {
-                addToPixel(path.pixelX, path.pixelY, surfaceAt(world, tracer, path.ray, hit).shadingNormal * 0.5f + 0.5f);
+                addToPixel(path.pixelX, path.pixelY, geometry.surface(path.ray, hit).shadingNormal * 0.5f + 0.5f);
             }
         }
     };
@@ -198,7 +191,7 @@ Image render(const Scene& scene, const TriangleMesh& world, const Tracer& tracer
                 addToPixel(path.pixelX, path.pixelY, path.throughput() * scene.background);
                 continue;
             }
-            scatterAtSurface(shading, path, surfaceAt(world, tracer, path.ray, hit), rng, out);
+            scatterAtSurface(shading, path, geometry.surface(path.ray, hit), rng, out);
         }
     };
 

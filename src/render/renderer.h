@@ -33,10 +33,9 @@ struct RenderStats {
     double mraysPerSecond() const { return seconds > 0 ? double(totalRays()) / seconds * 1e-6 : 0.0; }
 };
 
-/// Renders `scene`, whose triangles flattened to world space are `world` (geomId 0 of `tracer`).
+/// Renders `scene` through `tracer`, whose geometry is the scene's.
 /// The color AOV is linear RGB; normal is n * 0.5 + 0.5; depth is the first hit's t (0 on a miss);
 /// cost is a heatmap of nodes + primitives visited by the primary rays, scaled to the image maximum.
-Image render(const Scene& scene, const TriangleMesh& world, const Tracer& tracer, const RenderOptions& options,
-             RenderStats& stats);
+Image render(const Scene& scene, const Tracer& tracer, const RenderOptions& options, RenderStats& stats);
 
 } // namespace wideray

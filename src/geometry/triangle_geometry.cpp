@@ -1,4 +1,6 @@
-#include "core/scene.h"
+#include "geometry/triangle_geometry.h"
+
+#include <algorithm>
 
 namespace wideray {
 
@@ -50,6 +52,56 @@ TriangleMesh flattenTriangles(const Scene& scene) {
         world.droppedDegenerate += mesh.droppedDegenerate;
     }
     return world;
+}
+
+TriangleGeometry::TriangleGeometry(const Scene& scene) : world_(flattenTriangles(scene)) {
+    uint32_t first = 0;
+    for (const MeshInstance& instance : scene.instances) {
+        instanceFirst_.push_back(first);
+        first += uint32_t(scene.meshes[instance.mesh].triangles.size());
+    }
+}
+
+TriangleGeometry::TriangleGeometry(TriangleMesh mesh) : world_(std::move(mesh)), instanceFirst_{0} {}
+
+Bounds3f TriangleGeometry::primitiveBounds(uint32_t primId) const {
+    const glm::uvec3& t = world_.triangles[primId];
+    Bounds3f b;
+    b.grow(world_.positions[t.x]);
+    b.grow(world_.positions[t.y]);
+    b.grow(world_.positions[t.z]);
+    return b;
+}
+
+Bounds3f TriangleGeometry::bounds() const {
+    Bounds3f b;
+    for (const glm::vec3& p : world_.positions) b.grow(p);
+    return b;
+}
+
+uint32_t TriangleGeometry::instanceOf(uint32_t primId) const {
+    // The last instance that starts at or before primId (instances of empty meshes share a start).
+    auto it = std::upper_bound(instanceFirst_.begin(), instanceFirst_.end(), primId);
+    return uint32_t(it - instanceFirst_.begin()) - 1;
+}
+
+SurfacePoint TriangleGeometry::surface(const Ray& ray, const Hit& hit) const {
+    (void)ray;
+    const glm::uvec3& tri = world_.triangles[hit.primId];
+    const glm::vec3 &a = world_.positions[tri.x], &b = world_.positions[tri.y], &c = world_.positions[tri.z];
+    float w = 1.0f - hit.u - hit.v;
+    SurfacePoint sp;
+    sp.position = w * a + hit.u * b + hit.v * c;
+    sp.geometricNormal = glm::normalize(glm::cross(b - a, c - a));
+    sp.shadingNormal = sp.geometricNormal;
+    if (!world_.normals.empty()) {
+        glm::vec3 n = w * world_.normals[tri.x] + hit.u * world_.normals[tri.y] + hit.v * world_.normals[tri.z];
+        if (glm::dot(n, n) > 0.0f) sp.shadingNormal = glm::normalize(n);
+    }
+    if (!world_.uvs.empty()) sp.uv = w * world_.uvs[tri.x] + hit.u * world_.uvs[tri.y] + hit.v * world_.uvs[tri.z];
+    sp.material = world_.faceMaterial.empty() ? 0 : world_.faceMaterial[hit.primId];
+    sp.instance = instanceOf(hit.primId);
+    return sp;
 }
 
 } // namespace wideray

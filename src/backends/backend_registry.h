@@ -1,0 +1,30 @@
+#pragma once
+// The backends, one row each: who builds structures and traces rays. render, info and bench choose
+// from this list by name.
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "backends/structure.h"
+
+namespace wideray {
+
+struct StructureOptions {
+    int bvhWidth = 8;              ///< wideray: children per node, 4 or 8
+    std::string quality = "medium";  ///< embree: low, medium or high (RTC_BUILD_QUALITY_*)
+};
+
+struct Backend {
+    const char* name;
+    const char* description;
+    /// Throws InputError for options the backend cannot build.
+    std::shared_ptr<const Structure> (*build)(std::shared_ptr<const SceneGeometry> geometry,
+                                              const StructureOptions& options);
+};
+
+std::span<const Backend> backends();
+/// The backend named `name`; throws InputError (naming the valid ones) otherwise.
+const Backend& findBackend(std::string_view name);
+
+} // namespace wideray

@@ -1,0 +1,76 @@
+#include "backends/wideray_structure.h"
+
+#include <fmt/core.h>
+
+#include "accel/bvh_stats.h"
+#include "backends/wideray_tracer.h"
+#include "core/error.h"
+
+namespace wideray {
+
+template <int N>
+WideBvhStructure<N>::WideBvhStructure(std::shared_ptr<const SceneGeometry> geometry)
+    : Structure(geometry), accel_(std::move(geometry)) {}
+
+template <int N>
+std::string WideBvhStructure<N>::summary() const {
+    BvhStats s = wideBvhStats(accel_.triangleBvh(), SceneAccel<N>::defaultConfig());
+    const uint64_t triangles = geometry().triangleCount();
+    const double bytesPerTriangle = triangles == 0 ? 0.0 : double(bytes()) / double(triangles);
+    const BuildTimings& t = accel_.timings();
+    return fmt::format("BVH{}: {} inner nodes, {} leaves ({} blocks of {} triangles), depth {}, SAH cost {:.2f}, "
+                       "{:.1f} bytes/triangle, build {:.1f} ms (binned SAH {:.1f} ms + collapse {:.1f} ms)",
+                       N, s.innerNodes, s.leaves, s.leafItems, kBlockSize, s.depth, s.sahCost, bytesPerTriangle,
+                       t.totalSeconds() * 1e3, t.binarySeconds * 1e3, t.collapseSeconds * 1e3);
+}
+
+Isa chosenIsa(const KernelChoice& choice) {
+    const Isa isa = choice.isa.value_or(bestIsa());
+    if (!cpuSupports(isa))
+        throw InputError("--isa", "", std::string("this CPU cannot run ") + isaName(isa) + " code (it has up to " +
+                                          isaName(bestIsa()) + ")");
+    return isa;
+}
+
+template <int N>
+std::unique_ptr<Tracer> WideBvhStructure<N>::tracer(const KernelChoice& choice) const {
+    const Isa isa = chosenIsa(choice);
+    const KernelTable<N> table = kernelTable<N>(isa);
+    Kernel<N> coherent, incoherent;
+    std::string coherentName;
+    if (choice.kernel == "auto") {
+        // Camera rays share an origin, which is where interval culling shines; coherent shadow rays
+        // start on surfaces, where 256-ray packets can visit far more leaves than they hit (8x
+        // slower on the coffee maker, docs/performance-analysis.md), so they take 16-wide packets.
+        const Kernel<N>* widest = nullptr;
+        for (const char* name : {"packet16", "packet8", "packet4"})
+            if (!widest && table.find(name)->available()) widest = table.find(name);
+        coherent = *table.find("packet256");
+        coherent.occluded = widest->occluded;
+        coherentName = std::string("packet256+") + widest->name;
+        incoherent = *table.find("single");
+    } else {
+        const Kernel<N>* k = table.find(choice.kernel);
+        if (!k) throw InputError("--kernel", "", "no kernel is named '" + choice.kernel + "'");
+        if (!k->available())
+            throw InputError("--kernel", "", "kernel '" + choice.kernel + "' is not available with ISA " +
+                                                 isaName(isa) + " (it needs " + isaName(k->minimumIsa) + ")");
+        coherent = incoherent = *k;
+        coherentName = k->name;
+    }
+    std::string name = fmt::format("wideray BVH{} {}/{} {}", N, coherentName, incoherent.name, isaName(isa));
+    return std::make_unique<WiderayTracer<N>>(shared_from_this(), accel_, coherent, incoherent, std::move(name),
+                                              choice.shadowCache);
+}
+
+std::shared_ptr<const Structure> buildWideBvh(std::shared_ptr<const SceneGeometry> geometry,
+                                              const StructureOptions& options) {
+    if (options.bvhWidth == 4) return std::make_shared<WideBvhStructure<4>>(std::move(geometry));
+    if (options.bvhWidth == 8) return std::make_shared<WideBvhStructure<8>>(std::move(geometry));
+    throw InputError("--bvh-width", "", "the BVH width must be 4 or 8");
+}
+
+template class WideBvhStructure<4>;
+template class WideBvhStructure<8>;
+
+} // namespace wideray

@@ -1,0 +1,37 @@
+#pragma once
+// Our structure as a backend: the scene's N-wide BVH (accel/scene_accel.h), traced by the kernels
+// of the registry (kernels/kernel_registry.h) for the ISA chosen.
+#include <memory>
+
+#include "accel/scene_accel.h"
+#include "backends/structure.h"
+#include "backends/backend_registry.h"
+
+namespace wideray {
+
+template <int N>
+class WideBvhStructure final : public Structure {
+public:
+    explicit WideBvhStructure(std::shared_ptr<const SceneGeometry> geometry);
+
+    const SceneAccel<N>& accel() const { return accel_; }
+    std::string name() const override { return "BVH" + std::to_string(N); }
+    double buildSeconds() const override { return accel_.timings().totalSeconds(); }
+    size_t bytes() const override { return accel_.bytes(); }
+    std::string summary() const override;
+    /// kernel "auto": packet256 for camera rays, the widest K-wide packets for their shadow rays,
+    /// single for incoherent rays.
+    std::unique_ptr<Tracer> tracer(const KernelChoice& choice) const override;
+
+private:
+    SceneAccel<N> accel_;
+};
+
+/// The backend row's build function: BVH4 or BVH8 as options.bvhWidth says.
+std::shared_ptr<const Structure> buildWideBvh(std::shared_ptr<const SceneGeometry> geometry,
+                                              const StructureOptions& options);
+
+/// The ISA a choice asks for, checked against this CPU; throws InputError.
+Isa chosenIsa(const KernelChoice& choice);
+
+} // namespace wideray

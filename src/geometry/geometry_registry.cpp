@@ -1,0 +1,25 @@
+#include "geometry/geometry_registry.h"
+
+#include "geometry/sphere_geometry.h"
+#include "geometry/triangle_geometry.h"
+
+namespace wideray {
+namespace {
+
+std::unique_ptr<Geometry> makeTriangles(const Scene& scene) { return std::make_unique<TriangleGeometry>(scene); }
+
+std::unique_ptr<Geometry> makeSpheres(const Scene& scene) {
+    if (scene.spheres.empty()) return nullptr;
+    return std::make_unique<SphereGeometry>(scene.spheres);
+}
+
+constexpr GeometryKind kKinds[] = {
+    {"triangles", &makeTriangles},
+    {"spheres", &makeSpheres},
+};
+
+} // namespace
+
+std::span<const GeometryKind> geometryKinds() { return kKinds; }
+
+} // namespace wideray

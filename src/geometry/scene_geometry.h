@@ -1,0 +1,31 @@
+#pragma once
+// The geometry of a scene, built once from the scene model: a list of geometries indexed by geomId,
+// made by the factories of geometry_registry.h in their order. The renderer, every acceleration
+// structure and every backend read the scene's primitives from here.
+#include <memory>
+#include <vector>
+
+#include "core/geometry.h"
+#include "core/scene.h"
+
+namespace wideray {
+
+class SceneGeometry {
+public:
+    explicit SceneGeometry(const Scene& scene);
+    /// A scene of one mesh and nothing else (tests, benchmarks).
+    explicit SceneGeometry(TriangleMesh mesh);
+
+    uint32_t size() const { return uint32_t(geometries_.size()); }
+    const Geometry& operator[](uint32_t geomId) const { return *geometries_[geomId]; }
+
+    /// The box around every geometry; empty when there is none.
+    Bounds3f bounds() const;
+    uint64_t triangleCount() const;
+    SurfacePoint surface(const Ray& ray, const Hit& hit) const { return geometries_[hit.geomId]->surface(ray, hit); }
+
+private:
+    std::vector<std::unique_ptr<Geometry>> geometries_;
+};
+
+} // namespace wideray

@@ -1,0 +1,38 @@
+#pragma once
+// The instanced triangle meshes of a scene as one geometry: each instance's triangles transformed to
+// world space, in instance order, so that a primId names one triangle of one instance. The current
+// acceleration structures place them all in one tree; a two-level structure would keep the
+// instances apart (docs/architecture.md).
+#include <vector>
+
+#include "core/geometry.h"
+#include "core/scene.h"
+
+namespace wideray {
+
+class TriangleGeometry final : public Geometry {
+public:
+    /// The scene's instances, flattened.
+    explicit TriangleGeometry(const Scene& scene);
+    /// One mesh placed once, as it is.
+    explicit TriangleGeometry(TriangleMesh mesh);
+
+    uint32_t primitiveCount() const override { return uint32_t(world_.triangles.size()); }
+    Bounds3f primitiveBounds(uint32_t primId) const override;
+    /// The box around every vertex.
+    Bounds3f bounds() const override;
+    SurfacePoint surface(const Ray& ray, const Hit& hit) const override;
+    const TriangleMesh* triangles() const override { return &world_; }
+
+    /// The instance a triangle belongs to.
+    uint32_t instanceOf(uint32_t primId) const;
+
+private:
+    TriangleMesh world_;
+    std::vector<uint32_t> instanceFirst_;  ///< the first primId of each instance
+};
+
+/// All instanced triangles in world space, in one mesh; faceMaterial indexes scene.materials.
+TriangleMesh flattenTriangles(const Scene& scene);
+
+} // namespace wideray
