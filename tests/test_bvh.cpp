@@ -33,7 +33,7 @@ Bounds3f triangleBox(const TriangleMesh& mesh, uint32_t prim) {
 template <int N>
 void checkWide(const TriangleMesh& mesh) {
     SceneAccel<N> accel(std::make_shared<SceneGeometry>(mesh));
-    const WideBvh<N>& bvh = accel.triangleBvh();
+    const WideBvh<N>& bvh = accel.bvh();
     const auto& blocks = accel.blocks();
     std::vector<int> seen(mesh.triangles.size(), 0);
     std::vector<int> blockSeen(blocks.size(), 0);
@@ -101,7 +101,7 @@ TEST(Bvh, IdenticalTrianglesStillGiveABoundedTree) {
     mesh.triangles.assign(5000, glm::uvec3(0, 1, 2));
     checkWide<8>(mesh);
     SceneAccel<8> accel(std::make_shared<SceneGeometry>(mesh));
-    EXPECT_LE(wideBvhStats(accel.triangleBvh(), SceneAccel<8>::defaultConfig()).depth, kMaxBvhDepth);
+    EXPECT_LE(wideBvhStats(accel.bvh(), SceneAccel<8>::defaultConfig()).depth, kMaxBvhDepth);
 }
 
 TEST(Bvh, BinaryLeavesRespectTheLeafSize) {
@@ -144,9 +144,9 @@ TEST(Bvh, SahCostBelowMedianSplit) {
 TEST(Bvh, BuildIsDeterministic) {
     TriangleMesh mesh = testMesh();
     SceneAccel<8> a(std::make_shared<SceneGeometry>(mesh)), b(std::make_shared<SceneGeometry>(mesh));
-    ASSERT_EQ(a.triangleBvh().nodes.size(), b.triangleBvh().nodes.size());
-    for (size_t n = 0; n < a.triangleBvh().nodes.size(); ++n) {
-        const WideNode<8>&x = a.triangleBvh().nodes[n], &y = b.triangleBvh().nodes[n];
+    ASSERT_EQ(a.bvh().nodes.size(), b.bvh().nodes.size());
+    for (size_t n = 0; n < a.bvh().nodes.size(); ++n) {
+        const WideNode<8>&x = a.bvh().nodes[n], &y = b.bvh().nodes[n];
         for (int i = 0; i < 8; ++i) {
             ASSERT_EQ(x.child[i].bits, y.child[i].bits);
             ASSERT_EQ(x.lowerX[i], y.lowerX[i]);

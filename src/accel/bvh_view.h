@@ -10,31 +10,26 @@ namespace wideray {
 
 class UserGeometry;
 
-template <int N>
-struct TriangleBvhView {
-    const WideNode<N>* nodes = nullptr;
-    NodeRef root = NodeRef::empty();
-    const TriangleBlock<kBlockSize>* blocks = nullptr;
-};
-
-/// A user primitive: primitive primId of geometry geomId (geomId >= 1; 0 is the triangles).
+/// A user primitive: primitive primId of geometry geomId.
 struct PrimRef {
     uint32_t geomId;
     uint32_t primId;
 };
 
-template <int N>
-struct UserBvhView {
-    const WideNode<N>* nodes = nullptr;
-    NodeRef root = NodeRef::empty();
+/// The items the leaves of a scene's BVH point to: triangle blocks (geomId 0), and user primitives
+/// for leaves with NodeRef::kUserFlag.
+struct SceneLeaves {
+    const TriangleBlock<kBlockSize>* blocks = nullptr;
     const PrimRef* prims = nullptr;
     const UserGeometry* const* geometries = nullptr;  ///< indexed by geomId
 };
 
+/// One N-wide BVH over all of a scene's primitives.
 template <int N>
 struct SceneView {
-    TriangleBvhView<N> triangles;
-    UserBvhView<N> user;
+    const WideNode<N>* nodes = nullptr;
+    NodeRef root = NodeRef::empty();
+    SceneLeaves leaves;
 };
 
 } // namespace wideray

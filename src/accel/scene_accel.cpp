@@ -1,6 +1,8 @@
 #include "accel/scene_accel.h"
 
 #include <chrono>
+#include <limits>
+#include <string>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
@@ -10,6 +12,50 @@ namespace {
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Gives the leaves of a BVH over user primitives their type.
+template <int N>
+void markUserLeaves(WideBvh<N>& bvh) {
+    auto mark = [](NodeRef& ref) {
+        if (ref.isLeaf() && ref.count() > 0) ref = NodeRef::userLeaf(ref.first(), ref.count());
+    };
+    mark(bvh.root);
+    for (WideNode<N>& node : bvh.nodes)
+        for (NodeRef& child : node.child) mark(child);
+}
+
+/// One tree over both: a's nodes, then b's, under a new root whose two children are their roots.
+template <int N>
+WideBvh<N> joinBvhs(WideBvh<N> a, WideBvh<N> b) {
+    if (b.root.bits == NodeRef::empty().bits) return a;
+    if (a.root.bits == NodeRef::empty().bits) return b;
+    const uint32_t offset = uint32_t(a.nodes.size());
+    auto shift = [offset](NodeRef ref) { return ref.isLeaf() ? ref : NodeRef::inner(ref.index() + offset); };
+    for (WideNode<N>& node : b.nodes)
+        for (NodeRef& child : node.child) child = shift(child);
+    WideBvh<N> out;
+    out.nodes = std::move(a.nodes);
+    out.nodes.insert(out.nodes.end(), b.nodes.begin(), b.nodes.end());
+    WideNode<N> root;
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    const NodeRef children[2] = {a.root, shift(b.root)};
+    const Bounds3f bounds[2] = {a.bounds, b.bounds};
+    for (int i = 0; i < N; ++i) {
+        const bool used = i < 2;
+        root.lowerX[i] = used ? bounds[i].lower.x : inf;
+        root.lowerY[i] = used ? bounds[i].lower.y : inf;
+        root.lowerZ[i] = used ? bounds[i].lower.z : inf;
+        root.upperX[i] = used ? bounds[i].upper.x : -inf;
+        root.upperY[i] = used ? bounds[i].upper.y : -inf;
+        root.upperZ[i] = used ? bounds[i].upper.z : -inf;
+        root.child[i] = used ? children[i] : NodeRef::empty();
+    }
+    out.root = NodeRef::inner(uint32_t(out.nodes.size()));
+    out.nodes.push_back(root);
+    out.bounds = a.bounds;
+    out.bounds.grow(b.bounds);
+    return out;
 }
 
 } // namespace
@@ -40,13 +86,20 @@ SceneAccel<N>::SceneAccel(std::shared_ptr<const SceneGeometry> geometry, const B
         userGeometries_.push_back(item.user());
         if (item.triangles() && g != 0) throw std::logic_error("SceneAccel: triangle meshes must be geometry 0");
     }
-    if (geometry_->size() > 0 && (*geometry_)[0].triangles()) buildTriangles(*(*geometry_)[0].triangles(), config);
-    buildUser(config);
+    WideBvh<N> triangles, user;
+    if (geometry_->size() > 0 && (*geometry_)[0].triangles()) triangles = buildTriangles(*(*geometry_)[0].triangles(), config);
+    user = buildUser(config);
+    auto start = std::chrono::steady_clock::now();
+    bvh_ = joinBvhs(std::move(triangles), std::move(user));
+    timings_.collapseSeconds += secondsSince(start);
 }
 
 template <int N>
-void SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuildConfig& config) {
-    if (mesh.triangles.empty()) return;
+WideBvh<N> SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuildConfig& config) {
+    if (mesh.triangles.empty()) return {};
+    if (mesh.triangles.size() / kBlockSize >= NodeRef::kFirstMask)
+        throw std::length_error("SceneAccel: more triangles than the BVH's leaves can address (" +
+                                std::to_string(NodeRef::kFirstMask) + " blocks of " + std::to_string(kBlockSize) + ")");
     auto start = std::chrono::steady_clock::now();
     std::vector<Bounds3f> bounds;
     std::vector<glm::vec3> centers;
@@ -75,12 +128,13 @@ void SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuildConfi
         }
         return first;
     };
-    triangleBvh_ = collapseBvh<N>(binary, emit);
+    WideBvh<N> bvh = collapseBvh<N>(binary, emit);
     timings_.collapseSeconds += secondsSince(start);
+    return bvh;
 }
 
 template <int N>
-void SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
+WideBvh<N> SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
     std::vector<Bounds3f> bounds;
     std::vector<glm::vec3> centers;
     std::vector<PrimRef> refs;
@@ -90,7 +144,8 @@ void SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
             bounds.push_back(userGeometries_[g]->primitiveBounds(p));
             centers.push_back(bounds.back().center());
         }
-    if (refs.empty()) return;
+    if (refs.empty()) return {};
+    if (refs.size() >= NodeRef::kFirstMask) throw std::length_error("SceneAccel: too many user primitives");
     auto start = std::chrono::steady_clock::now();
     BvhBuildConfig userConfig = config;
     userConfig.blockSize = 1;
@@ -101,22 +156,21 @@ void SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
         count = uint32_t(leafPrims.size());
         return first;
     };
-    userBvh_ = collapseBvh<N>(binary, emit);
+    WideBvh<N> bvh = collapseBvh<N>(binary, emit);
+    markUserLeaves(bvh);
     timings_.binarySeconds += secondsSince(start);
+    return bvh;
 }
 
 template <int N>
 SceneView<N> SceneAccel<N>::view() const {
-    SceneView<N> v;
-    if (!blocks_.empty()) v.triangles = {triangleBvh_.nodes.data(), triangleBvh_.root, blocks_.data()};
-    if (!prims_.empty()) v.user = {userBvh_.nodes.data(), userBvh_.root, prims_.data(), userGeometries_.data()};
-    return v;
+    return {bvh_.nodes.data(), bvh_.root, {blocks_.data(), prims_.data(), userGeometries_.data()}};
 }
 
 template <int N>
 size_t SceneAccel<N>::bytes() const {
-    return triangleBvh_.nodes.size() * sizeof(WideNode<N>) + blocks_.size() * sizeof(TriangleBlock<kBlockSize>) +
-           userBvh_.nodes.size() * sizeof(WideNode<N>) + prims_.size() * sizeof(PrimRef);
+    return bvh_.nodes.size() * sizeof(WideNode<N>) + blocks_.size() * sizeof(TriangleBlock<kBlockSize>) +
+           prims_.size() * sizeof(PrimRef);
 }
 
 template class SceneAccel<4>;

@@ -1,6 +1,7 @@
 #pragma once
-// Our acceleration structure of a scene: an N-wide BVH over its triangles, laid out in blocks for
-// SIMD intersection, and one over its user geometry (spheres).
+// Our acceleration structure of a scene: one N-wide BVH over all its primitives. Triangles sit in
+// leaves of blocks laid out for SIMD intersection, user geometry (spheres) in leaves of primitive
+// references; the two are built as subtrees and joined under one root.
 #include <memory>
 #include <vector>
 
@@ -29,19 +30,18 @@ public:
     }
 
     SceneView<N> view() const;
-    const WideBvh<N>& triangleBvh() const { return triangleBvh_; }
+    const WideBvh<N>& bvh() const { return bvh_; }
     const std::vector<TriangleBlock<kBlockSize>>& blocks() const { return blocks_; }
     const SceneGeometry& geometry() const { return *geometry_; }
     const BuildTimings& timings() const { return timings_; }
     size_t bytes() const;
 
 private:
-    void buildTriangles(const TriangleMesh& mesh, const BvhBuildConfig& config);
-    void buildUser(const BvhBuildConfig& config);
+    WideBvh<N> buildTriangles(const TriangleMesh& mesh, const BvhBuildConfig& config);
+    WideBvh<N> buildUser(const BvhBuildConfig& config);
 
-    WideBvh<N> triangleBvh_;
+    WideBvh<N> bvh_;
     std::vector<TriangleBlock<kBlockSize>> blocks_;
-    WideBvh<N> userBvh_;
     std::vector<PrimRef> prims_;
     std::shared_ptr<const SceneGeometry> geometry_;
     std::vector<const UserGeometry*> userGeometries_;  ///< indexed by geomId; null for triangle meshes

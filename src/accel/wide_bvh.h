@@ -12,12 +12,14 @@
 namespace wideray {
 
 /// A child reference: an inner node's index, or a leaf (kLeafFlag) holding `count` consecutive leaf
-/// items starting at `first` (triangle blocks or primitive indices, as the BVH's owner defines them).
+/// items starting at `first`. Leaves are of two types, told apart by kUserFlag: triangle blocks, and
+/// user primitives (the BVH's owner defines what the items of each are).
 struct NodeRef {
     static constexpr uint32_t kLeafFlag = 0x80000000u;
     static constexpr int kCountShift = 27;
     static constexpr uint32_t kMaxLeafItems = 15;
-    static constexpr uint32_t kFirstMask = (1u << kCountShift) - 1;
+    static constexpr uint32_t kUserFlag = 1u << 26;
+    static constexpr uint32_t kFirstMask = kUserFlag - 1;  ///< the most leaf items of one type: 2^26
 
     uint32_t bits;  ///< left uninitialized by default: traversal stacks hold hundreds of these
 
@@ -25,8 +27,11 @@ struct NodeRef {
     static NodeRef empty() { return {kLeafFlag}; }
     static NodeRef inner(uint32_t index) { return {index}; }
     static NodeRef leaf(uint32_t first, uint32_t count) { return {kLeafFlag | (count << kCountShift) | first}; }
+    static NodeRef userLeaf(uint32_t first, uint32_t count) { return {leaf(first, count).bits | kUserFlag}; }
 
     bool isLeaf() const { return bits & kLeafFlag; }
+    /// A leaf of user primitives (only meaningful for leaves).
+    bool isUserLeaf() const { return bits & kUserFlag; }
     uint32_t index() const { return bits; }
     uint32_t first() const { return bits & kFirstMask; }
     uint32_t count() const { return (bits & ~kLeafFlag) >> kCountShift; }

@@ -14,7 +14,7 @@ WideBvhStructure<N>::WideBvhStructure(std::shared_ptr<const SceneGeometry> geome
 
 template <int N>
 std::string WideBvhStructure<N>::summary() const {
-    BvhStats s = wideBvhStats(accel_.triangleBvh(), SceneAccel<N>::defaultConfig());
+    BvhStats s = wideBvhStats(accel_.bvh(), SceneAccel<N>::defaultConfig());
     const uint64_t triangles = geometry().triangleCount();
     const double bytesPerTriangle = triangles == 0 ? 0.0 : double(bytes()) / double(triangles);
     const BuildTimings& t = accel_.timings();

@@ -26,17 +26,30 @@ inline BoxRay makeBoxRay(float ox, float oy, float oz, float dx, float dy, float
             dy < 0.0f || std::signbit(dy), dz < 0.0f || std::signbit(dz)};
 }
 
-/// Slab distances of one child. NaN slabs (0 * inf) drop out: min/max return their second operand.
+/// The slab test, the one every kernel runs: entry and exit distances of rays (origin o, reciprocal
+/// direction rd; scalars or vectors) through boxes given by their near and far planes. NaN slabs
+/// (0 * inf) drop out: min/max return their second operand.
 template <class F>
-inline void slabInterval(const F& nearX, const F& farX, const F& nearY, const F& farY, const F& nearZ,
-                         const F& farZ, const BoxRay& r, const F& tnear, const F& tfar, F& tEntry, F& tExit) {
+[[gnu::always_inline]] inline void slabInterval(const F& nearX, const F& farX, const F& nearY, const F& farY,
+                                                const F& nearZ, const F& farZ, const F& ox, const F& oy, const F& oz,
+                                                const F& rdx, const F& rdy, const F& rdz, const F& tnear,
+                                                const F& tfar, F& tEntry, F& tExit) {
     using simd::max;
     using simd::min;
-    F tx0 = (nearX - F(r.ox)) * F(r.rdx), tx1 = (farX - F(r.ox)) * F(r.rdx);
-    F ty0 = (nearY - F(r.oy)) * F(r.rdy), ty1 = (farY - F(r.oy)) * F(r.rdy);
-    F tz0 = (nearZ - F(r.oz)) * F(r.rdz), tz1 = (farZ - F(r.oz)) * F(r.rdz);
+    F tx0 = (nearX - ox) * rdx, tx1 = (farX - ox) * rdx;
+    F ty0 = (nearY - oy) * rdy, ty1 = (farY - oy) * rdy;
+    F tz0 = (nearZ - oz) * rdz, tz1 = (farZ - oz) * rdz;
     tEntry = max(tx0, max(ty0, max(tz0, tnear)));
     tExit = min(tx1, min(ty1, min(tz1, tfar))) * F(kRobustFarScale);
+}
+
+/// The traversal stack's sorted insert: `e` goes into stack[base, sp), kept farthest first by
+/// `distance`, so that the nearest entry is popped first. Equal distances keep their push order.
+template <class Entry>
+[[gnu::always_inline]] inline void pushSorted(Entry* stack, int base, int& sp, const Entry& e) {
+    int j = sp++;
+    for (; j > base && stack[j - 1].distance < e.distance; --j) stack[j] = stack[j - 1];
+    stack[j] = e;
 }
 
 /// Tests all N children; returns the bit mask of those hit and writes their entry distances.
@@ -55,7 +68,8 @@ inline uint32_t intersectChildren(const WideNode<N>& node, const BoxRay& r, floa
         uint32_t mask = 0;
         for (int i = 0; i < N; ++i) {
             float tEntry, tExit;
-            slabInterval(nx[i], fx[i], ny[i], fy[i], nz[i], fz[i], r, tnear, tfar, tEntry, tExit);
+            slabInterval(nx[i], fx[i], ny[i], fy[i], nz[i], fz[i], r.ox, r.oy, r.oz, r.rdx, r.rdy, r.rdz, tnear, tfar,
+                         tEntry, tExit);
             tEntryOut[i] = tEntry;
             mask |= uint32_t(tEntry <= tExit) << i;
         }
@@ -67,7 +81,8 @@ inline uint32_t intersectChildren(const WideNode<N>& node, const BoxRay& r, floa
         for (int c = 0; c < N; c += W) {
             F tEntry, tExit;
             slabInterval(F::load(nx + c), F::load(fx + c), F::load(ny + c), F::load(fy + c), F::load(nz + c),
-                         F::load(fz + c), r, F(tnear), F(tfar), tEntry, tExit);
+                         F::load(fz + c), F(r.ox), F(r.oy), F(r.oz), F(r.rdx), F(r.rdy), F(r.rdz), F(tnear), F(tfar),
+                         tEntry, tExit);
             tEntry.store(tEntryOut + c);
             mask |= simd::movemask(tEntry <= tExit) << c;
         }

@@ -37,7 +37,7 @@ void singleOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occlude
 template <int N>
 void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count,
                           ShadowCache& cache) {
-    const TriangleBvhView<N>& tri = scene.triangles;
+    const SceneLeaves& leaves = scene.leaves;
     for (size_t i = 0; i < count; ++i) {
         const Ray& ray = rays[i];
         occluded[i] = 0;
@@ -46,27 +46,26 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
         Hit hit;
         hit.t = ray.tfar;
         ++cache.queries;
-        if (cache.block != kInvalidId && intersectBlock<kBlockSize, true>(tri.blocks[cache.block], s, ray, hit)) {
+        if (cache.block != kInvalidId && intersectBlock<kBlockSize, true>(leaves.blocks[cache.block], s, ray, hit)) {
             ++cache.hits;
             occluded[i] = 1;
             continue;
         }
         bool blocked = false;
         TraversalCost cost;
-        if (tri.blocks)
-            traverseWide<N, kNodeSimdWidth<N>>(
-                tri.nodes, tri.root, s.box, ray.tnear, [&] { return hit.t; },
-                [&](uint32_t first, uint32_t n) {
-                    for (uint32_t b = first; b < first + n; ++b)
-                        if (intersectBlock<kBlockSize, true>(tri.blocks[b], s, ray, hit)) {
-                            cache.block = b;
-                            return blocked = true;
-                        }
-                    return false;
-                },
-                cost);
-        if (!blocked && scene.user.prims)
-            blocked = traceUser<N, kNodeSimdWidth<N>, true>(scene.user, ray, s, hit, cost);
+        // The scene's leaf intersector, but remembering the block that blocked the ray.
+        traverseWide<N, kNodeSimdWidth<N>>(
+            scene.nodes, scene.root, s.box, ray.tnear, [&] { return hit.t; },
+            [&](NodeRef leaf) {
+                if (leaf.isUserLeaf()) return blocked = intersectUserLeaf<true>(leaves, leaf, ray, hit, cost);
+                for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b)
+                    if (intersectBlock<kBlockSize, true>(leaves.blocks[b], s, ray, hit)) {
+                        cache.block = b;
+                        return blocked = true;
+                    }
+                return false;
+            },
+            cost);
         occluded[i] = blocked ? 1 : 0;
     }
 }

@@ -8,7 +8,7 @@
 namespace wideray {
 namespace {
 
-constexpr int kFloatArrays = 13, kIntArrays = 5;
+constexpr int kFloatArrays = 13, kIntArrays = 5, kIdArrays = 3;
 
 void* allocate(size_t bytes) {
     void* p = std::aligned_alloc(64, (bytes + 63) / 64 * 64);
@@ -27,7 +27,7 @@ StreamWorkspace::~StreamWorkspace() {
 void StreamWorkspace::reserveRays(size_t n) {
     if (n <= capacity) return;
     size_t stride = (n + 15) / 16 * 16;  // keeps every array 64-byte aligned
-    size_t bytes = stride * (4 * (kFloatArrays + kIntArrays) + sizeof(uint32_t) + sizeof(uint64_t) + 1);
+    size_t bytes = stride * (4 * (kFloatArrays + kIntArrays + kIdArrays) + sizeof(uint64_t) + 1);
     char* block = static_cast<char*>(allocate(bytes));
     std::free(ox);
     float** floats[kFloatArrays] = {&ox, &oy, &oz, &rdx, &rdy, &rdz, &tnear, &tfar, &sx, &sy, &sz, &u, &v};
@@ -41,8 +41,10 @@ void StreamWorkspace::reserveRays(size_t n) {
     }
     keys = reinterpret_cast<uint64_t*>(block);
     block += stride * 8;
-    rayOf = reinterpret_cast<uint32_t*>(block);
-    block += stride * 4;
+    for (uint32_t** a : {&rayOf, &userGeomId, &userPrimId}) {
+        *a = reinterpret_cast<uint32_t*>(block);
+        block += stride * 4;
+    }
     valid = reinterpret_cast<uint8_t*>(block);
     capacity = stride;
 }

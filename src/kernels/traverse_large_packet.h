@@ -57,28 +57,26 @@ struct LeafBox {
     float lower[3], upper[3];
 };
 
-template <int K>
-[[gnu::always_inline]] inline vbool<K> intersectLeafBox(const LeafBox& b, const PacketRay<K>& p, const vfloat<K>& tfar,
-                                                        const vbool<K>& active) {
-    using F = vfloat<K>;
-    F nearX = F(p.negXs ? b.upper[0] : b.lower[0]), farX = F(p.negXs ? b.lower[0] : b.upper[0]);
-    F nearY = F(p.negYs ? b.upper[1] : b.lower[1]), farY = F(p.negYs ? b.lower[1] : b.upper[1]);
-    F nearZ = F(p.negZs ? b.upper[2] : b.lower[2]), farZ = F(p.negZs ? b.lower[2] : b.upper[2]);
-    F tx0 = (nearX - p.ox) * p.rdx, tx1 = (farX - p.ox) * p.rdx;
-    F ty0 = (nearY - p.oy) * p.rdy, ty1 = (farY - p.oy) * p.rdy;
-    F tz0 = (nearZ - p.oz) * p.rdz, tz1 = (farZ - p.oz) * p.rdz;
-    F tEntry = max(tx0, max(ty0, max(tz0, p.tnear)));
-    F tExit = min(tx1, min(ty1, min(tz1, tfar))) * F(kRobustFarScale);
-    return active & (tEntry <= tExit);
+/// Each sub-packet through tracePacket: rays that spread too far for interval culling.
+template <int N, int K, bool AnyHit, class Leaves>
+inline void traceSubPackets(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut) {
+    for (int first = 0; first < count; first += K) {
+        const int n = count - first < K ? count - first : K;
+        tracePacket<N, K, AnyHit, Leaves>(scene, rays + first, n, AnyHit ? nullptr : hitsOut + first,
+                                          AnyHit ? occludedOut + first : nullptr);
+    }
 }
 
 /// Closest hits (or occlusion) of up to K * P rays, P sub-packets of K.
-template <int N, int K, int P, bool AnyHit>
+template <int N, int K, int P, bool AnyHit, class Leaves = SceneLeafIntersector>
 inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
                              uint8_t* occludedOut) {
     using F = vfloat<K>;
+    const Leaves leaves{scene.leaves};
     PacketRay<K> packets[P];
     PacketHit<K> hits[P];
+    PacketUserHits<K> users[P];
+    TraversalCost cost;
     vbool<K> valid[P], done[P];
     const int subCount = (count + K - 1) / K;
     static_assert(P <= 64);
@@ -86,6 +84,7 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
     bool oneOctant = true;
     for (int s = 0; s < subCount; ++s) {
         valid[s] = loadPacket(rays + s * K, count - s * K < K ? count - s * K : K, packets[s], hits[s]);
+        users[s] = PacketUserHits<K>(rays + s * K);
         done[s] = andNot(vbool<K>(true), valid[s]);
         if (none(valid[s])) continue;
         const PacketRay<K>& first = packets[__builtin_ctzll(anyValid | (uint64_t(1) << s))];
@@ -93,15 +92,7 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
                     packets[s].negYs == first.negYs && packets[s].negZs == first.negZs;
         anyValid |= uint64_t(1) << s;
     }
-    const TriangleBvhView<N>& tri = scene.triangles;
-    if (!oneOctant || !tri.blocks || tri.root.isLeaf()) {
-        for (int s = 0; s < subCount; ++s) {
-            int n = count - s * K < K ? count - s * K : K;
-            tracePacket<N, K, AnyHit>(scene, rays + s * K, n, AnyHit ? nullptr : hitsOut + s * K,
-                                      AnyHit ? occludedOut + s * K : nullptr);
-        }
-        return;
-    }
+    if (!oneOctant || scene.root.isLeaf()) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut);
 
     if (anyValid) {
         RayInterval iv;
@@ -136,14 +127,7 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
             spread = max(spread, dHi - dLo);
             extent = max(extent, max(abs(dLo), abs(dHi)));
         }
-        if (!(spread <= 0.1f * extent)) {
-            for (int s = 0; s < subCount; ++s) {
-                int n = count - s * K < K ? count - s * K : K;
-                tracePacket<N, K, AnyHit>(scene, rays + s * K, n, AnyHit ? nullptr : hitsOut + s * K,
-                                          AnyHit ? occludedOut + s * K : nullptr);
-            }
-            return;
-        }
+        if (!(spread <= 0.1f * extent)) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut);
         // Clamp infinite reciprocals (zero direction components) so that 0 * inf cannot appear.
         for (int a = 0; a < 3; ++a) {
             iv.rdLo[a] = max(iv.rdLo[a], -3.0e38f); iv.rdHi[a] = min(iv.rdHi[a], 3.0e38f);
@@ -160,46 +144,43 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
 
         struct Entry {
             NodeRef ref;
-            float tEntry;
+            float distance;  ///< where the packet's interval enters the subtree's box
             LeafBox box;
         };
         Entry stack[kStackSize<N>];
         int sp = 0;
-        stack[sp++] = {tri.root, iv.tnear, {}};
+        stack[sp++] = {scene.root, iv.tnear, {}};
         float tfarMax = packetTfarMax();
         while (sp > 0) {
             Entry e = stack[--sp];
-            if (e.tEntry > tfarMax * kRobustFarScale) continue;
+            if (e.distance > tfarMax * kRobustFarScale) continue;
             if (!e.ref.isLeaf()) {
-                const WideNode<N>& node = tri.nodes[e.ref.index()];
+                const WideNode<N>& node = scene.nodes[e.ref.index()];
                 alignas(64) float tEntry[N];
                 uint32_t mask = intersectChildrenInterval<N>(node, iv, tfarMax, tEntry);
                 const int base = sp;
                 for (; mask; mask &= mask - 1) {
                     int i = __builtin_ctz(mask);
                     if (node.child[i].bits == NodeRef::empty().bits) continue;
-                    Entry c{node.child[i], tEntry[i],
-                            {{node.lowerX[i], node.lowerY[i], node.lowerZ[i]},
-                             {node.upperX[i], node.upperY[i], node.upperZ[i]}}};
-                    int j = sp++;
-                    for (; j > base && stack[j - 1].tEntry < c.tEntry; --j) stack[j] = stack[j - 1];
-                    stack[j] = c;
+                    pushSorted(stack, base, sp,
+                               Entry{node.child[i], tEntry[i],
+                                     {{node.lowerX[i], node.lowerY[i], node.lowerZ[i]},
+                                      {node.upperX[i], node.upperY[i], node.upperZ[i]}}});
                 }
                 continue;
             }
             for (uint64_t bits = anyValid; bits; bits &= bits - 1) {
                 int s = __builtin_ctzll(bits);
                 vbool<K> active = andNot(valid[s], done[s]);
-                active = intersectLeafBox(e.box, packets[s], hits[s].t, active);
+                const LeafBox& b = e.box;
+                active &= packetBoxEntry(b.lower[0], b.lower[1], b.lower[2], b.upper[0], b.upper[1], b.upper[2],
+                                         packets[s], hits[s].t, active) < F(__builtin_huge_valf());
                 if (none(active)) continue;
-                for (uint32_t b = e.ref.first(); b < e.ref.first() + e.ref.count(); ++b) {
-                    vbool<K> hit = intersectBlockPacket<K, AnyHit>(tri.blocks[b], packets[s], active, hits[s]);
-                    if constexpr (AnyHit) {
-                        done[s] |= hit;
-                        active = andNot(active, hit);
-                    }
+                const vbool<K> occluded = leaves.template packet<K, AnyHit>(e.ref, packets[s], active, hits[s], users[s], cost);
+                if constexpr (AnyHit) {
+                    done[s] |= occluded;
+                    if (all(done[s])) anyValid &= ~(uint64_t(1) << s);
                 }
-                if (AnyHit && all(done[s])) anyValid &= ~(uint64_t(1) << s);
             }
             if (AnyHit && !anyValid) break;
             tfarMax = packetTfarMax();
@@ -208,35 +189,8 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
 
     for (int s = 0; s < subCount; ++s) {
         const int n = count - s * K < K ? count - s * K : K;
-        const Ray* subRays = rays + s * K;
-        PacketLanes<K> lanes;
-        lanes.store(hits[s]);
-        const uint32_t validBits = movemask(valid[s]), doneBits = movemask(done[s]);
-        for (int lane = 0; lane < n; ++lane) {
-            const int i = s * K + lane;
-            if (!(validBits >> lane & 1)) {
-                if constexpr (AnyHit) occludedOut[i] = 0;
-                else hitsOut[i] = Hit{};
-                continue;
-            }
-            TraversalCost cost;
-            if constexpr (AnyHit) {
-                bool occluded = doneBits >> lane & 1;
-                if (!occluded && scene.user.prims) {
-                    Hit hit;
-                    hit.t = subRays[lane].tfar;
-                    occluded = traceUser<N, kNodeSimdWidth<N>, true>(scene.user, subRays[lane],
-                                                                     makeSingleRayState(subRays[lane]), hit, cost);
-                }
-                occludedOut[i] = occluded ? 1 : 0;
-            } else {
-                Hit hit = lanes.hit(lane, 0);
-                if (scene.user.prims)
-                    traceUser<N, kNodeSimdWidth<N>, false>(scene.user, subRays[lane], makeSingleRayState(subRays[lane]),
-                                                           hit, cost);
-                hitsOut[i] = hit.valid() ? hit : Hit{};
-            }
-        }
+        writePacketResults<K, AnyHit>(hits[s], users[s], movemask(valid[s]), movemask(done[s]), n,
+                                      AnyHit ? nullptr : hitsOut + s * K, AnyHit ? occludedOut + s * K : nullptr);
     }
 }
 

@@ -75,6 +75,7 @@ inline size_t loadStream(const Ray* rays, size_t count, StreamWorkspace& ws) {
         for (int l = 0; l < count; ++l) {
             uint32_t i = uint32_t(ws.keys[s + l]);
             ws.rayOf[s + l] = i;
+            ws.userGeomId[s + l] = ws.userPrimId[s + l] = kInvalidId;
             ws.tnear[s + l] = rays[i].tnear;
             ws.tfar[s + l] = rays[i].tfar;
         }
@@ -132,6 +133,22 @@ inline void gatherWoop(const StreamWorkspace& ws, const ListChunk<K>& c, PacketR
     h.primId = c.fetch(ws.prim);
 }
 
+/// The user-primitive hits of a chunk's rays, kept in the workspace by stream slot.
+template <int K>
+struct StreamUserHits {
+    const Ray* rays;  ///< the caller's array
+    StreamWorkspace& ws;
+    alignas(64) int32_t slot[K];
+
+    StreamUserHits(const Ray* callerRays, StreamWorkspace& workspace, const vint<K>& slots)
+        : rays(callerRays), ws(workspace) {
+        slots.store(slot);
+    }
+    const Ray& ray(int lane) const { return rays[ws.rayOf[slot[lane]]]; }
+    uint32_t& geomId(int lane) { return ws.userGeomId[slot[lane]]; }
+    uint32_t& primId(int lane) { return ws.userPrimId[slot[lane]]; }
+};
+
 template <int K>
 inline void scatterHits(StreamWorkspace& ws, const vint<K>& idx, const PacketHit<K>& h, uint32_t lanes) {
     alignas(64) int32_t i[K], prim[K];
@@ -152,6 +169,7 @@ enum class StreamOrder {
 /// A list of rays waiting on the traversal stack for a node.
 struct StreamEntry {
     NodeRef ref;
+    float distance;       ///< ByList: the nearest entry among the list's rays, which the pushes are sorted by
     uint32_t begin, end;  ///< the list in the arena
     uint32_t restoreTop;  ///< the arena's top once the list is taken off the stack
     uint32_t recheck;     ///< parent * N + slot of a leaf that its rays reach after a nearer sibling
@@ -162,12 +180,14 @@ constexpr uint32_t kNoRecheck = ~0u;
 template <int N>
 constexpr int kStreamStackSize = kMaxBvhDepth * N * N + 1;
 
-/// The rays of a leaf's list against its triangles, K at a time.
-template <int N, int K, bool AnyHit>
-inline void traceStreamLeaf(const TriangleBvhView<N>& tri, const StreamEntry& e, StreamWorkspace& ws) {
+/// The rays of a leaf's list against its primitives, K at a time.
+template <int N, int K, bool AnyHit, class Leaves>
+inline void traceStreamLeaf(const SceneView<N>& scene, const Leaves& leaves, const Ray* rays, const StreamEntry& e,
+                            StreamWorkspace& ws) {
     using F = vfloat<K>;
-    const WideNode<N>* parent = e.recheck == kNoRecheck ? nullptr : &tri.nodes[e.recheck / N];
+    const WideNode<N>* parent = e.recheck == kNoRecheck ? nullptr : &scene.nodes[e.recheck / N];
     const int slot = int(e.recheck % N);
+    TraversalCost cost;
     for (uint32_t at = e.begin; at < e.end; at += K) {
         const ListChunk<K> chunk = loadChunk<K>(&ws.arena[at], e.end - at);
         PacketRay<K> p;
@@ -181,14 +201,9 @@ inline void traceStreamLeaf(const TriangleBvhView<N>& tri, const StreamEntry& e,
         }
         if (none(active)) continue;
         gatherWoop(ws, chunk, p, h);
-        classifyAxes(p, movemask(active));
-        for (uint32_t b = e.ref.first(); b < e.ref.first() + e.ref.count(); ++b) {
-            vbool<K> hit = intersectBlockPacket<K, AnyHit>(tri.blocks[b], p, active, h);
-            if constexpr (AnyHit) {
-                h.t = select(hit, F(-__builtin_huge_valf()), h.t);
-                active = andNot(active, hit);
-            }
-        }
+        if (!e.ref.isUserLeaf()) classifyAxes(p, movemask(active));
+        StreamUserHits<K> user(rays, ws, chunk.idx);
+        leaves.template packet<K, AnyHit>(e.ref, p, active, h, user, cost);
         scatterHits<K>(ws, chunk.idx, h, movemask(chunk.valid));
     }
 }
@@ -217,10 +232,10 @@ inline void childEntries(const WideNode<N>& node, const int* live, int liveCount
 /// Splits the list of an inner node into one list per child (each as large as the list plus K of
 /// slack for the vector loads of the next level) and pushes them farthest first. Returns how many.
 template <int N, int K>
-inline int splitByList(const TriangleBvhView<N>& tri, const StreamEntry& e, StreamWorkspace& ws, StreamEntry* push) {
+inline int splitByList(const SceneView<N>& scene, const StreamEntry& e, StreamWorkspace& ws, StreamEntry* push) {
     using F = vfloat<K>;
     const F inf(__builtin_huge_valf());
-    const WideNode<N>& node = tri.nodes[e.ref.index()];
+    const WideNode<N>& node = scene.nodes[e.ref.index()];
     const uint32_t top = e.restoreTop, region = e.end - e.begin + K;
     int live[N];
     const int liveCount = liveChildren(node, live);
@@ -240,22 +255,16 @@ inline int splitByList(const TriangleBvhView<N>& tri, const StreamEntry& e, Stre
             childEnd[c] += uint32_t(compressStore(&ws.arena[childEnd[c]], chunk.idx, dist[c] < inf));
         }
     }
-    // Sorted insert: farthest first, so that the nearest child is popped first.
-    float nearest[N];
+    // Farthest first, so that the nearest child is popped first.
     int childCount = 0;
     const uint32_t newTop = top + liveCount * region;
     for (int c = 0; c < liveCount; ++c) {
         uint32_t begin = top + c * region;
         if (childEnd[c] == begin) continue;
-        float key = reduceMin(closest[c]);
-        int j = childCount++;
-        for (; j > 0 && nearest[j - 1] < key; --j) {
-            push[j] = push[j - 1];
-            nearest[j] = nearest[j - 1];
-        }
         const NodeRef child = node.child[live[c]];
-        push[j] = {child, begin, childEnd[c], newTop, child.isLeaf() ? e.ref.index() * N + uint32_t(live[c]) : kNoRecheck};
-        nearest[j] = key;
+        pushSorted(push, 0, childCount,
+                   StreamEntry{child, reduceMin(closest[c]), begin, childEnd[c], newTop,
+                               child.isLeaf() ? e.ref.index() * N + uint32_t(live[c]) : kNoRecheck});
     }
     if (childCount > 0) push[childCount - 1].recheck = kNoRecheck;  // popped first: nothing has moved
     return childCount;
@@ -270,12 +279,12 @@ inline int visitRank(uint32_t visits, int child) { return int(visits >> (8 + 3 *
 /// counted first so that the lists lie back to back, and pushed farthest rank first. Each ray thus
 /// finishes the subtree of its nearest child before any list holds it for its next.
 template <int N, int K>
-inline int splitByRay(const TriangleBvhView<N>& tri, const StreamEntry& e, StreamWorkspace& ws, StreamEntry* push) {
+inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWorkspace& ws, StreamEntry* push) {
     static_assert(N <= 8, "the visit code has room for eight children");
     using F = vfloat<K>;
     using I = vint<K>;
     const F inf(__builtin_huge_valf());
-    const WideNode<N>& node = tri.nodes[e.ref.index()];
+    const WideNode<N>& node = scene.nodes[e.ref.index()];
     const uint32_t count = e.end - e.begin;
     int live[N];
     const int liveCount = liveChildren(node, live);
@@ -326,30 +335,31 @@ inline int splitByRay(const TriangleBvhView<N>& tri, const StreamEntry& e, Strea
             if (listSize[l] == 0) continue;
             const NodeRef child = node.child[c];
             const bool recheck = rank > 0 && child.isLeaf();
-            push[pushed++] = {child, listBegin[l], listBegin[l] + listSize[l], newTop,
+            push[pushed++] = {child, 0.0f, listBegin[l], listBegin[l] + listSize[l], newTop,
                               recheck ? e.ref.index() * N + uint32_t(c) : kNoRecheck};
         }
     }
     return pushed;
 }
 
-template <int N, int K, bool AnyHit, StreamOrder Order>
-inline void traceStreamTriangles(const TriangleBvhView<N>& tri, size_t n, StreamWorkspace& ws) {
+template <int N, int K, bool AnyHit, StreamOrder Order, class Leaves>
+inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t n, StreamWorkspace& ws) {
+    const Leaves leaves{scene.leaves};
     auto* stack = static_cast<StreamEntry*>(ws.reserveStack(sizeof(StreamEntry) * kStreamStackSize<N>));
     int sp = 0;
     ws.reserveArena(n + K);
     for (size_t i = 0; i < n; ++i) ws.arena[i] = int32_t(i);
-    stack[sp++] = {tri.root, 0, uint32_t(n), uint32_t(n), kNoRecheck};
+    stack[sp++] = {scene.root, 0.0f, 0, uint32_t(n), uint32_t(n), kNoRecheck};
     while (sp > 0) {
         const StreamEntry e = stack[--sp];
-        if (e.ref.isLeaf()) traceStreamLeaf<N, K, AnyHit>(tri, e, ws);
-        else if constexpr (Order == StreamOrder::ByList) sp += splitByList<N, K>(tri, e, ws, stack + sp);
-        else sp += splitByRay<N, K>(tri, e, ws, stack + sp);
+        if (e.ref.isLeaf()) traceStreamLeaf<N, K, AnyHit>(scene, leaves, rays, e, ws);
+        else if constexpr (Order == StreamOrder::ByList) sp += splitByList<N, K>(scene, e, ws, stack + sp);
+        else sp += splitByRay<N, K>(scene, e, ws, stack + sp);
     }
 }
 
 /// Closest hits (AnyHit = false) or occlusion of `count` rays as one stream.
-template <int N, int K, bool AnyHit, StreamOrder Order>
+template <int N, int K, bool AnyHit, StreamOrder Order, class Leaves = SceneLeafIntersector>
 inline void traceStream(const SceneView<N>& scene, const Ray* rays, size_t count, Hit* hitsOut, uint8_t* occludedOut,
                         StreamWorkspace& ws) {
     for (size_t i = 0; i < count; ++i) {
@@ -358,27 +368,16 @@ inline void traceStream(const SceneView<N>& scene, const Ray* rays, size_t count
     }
     size_t n = loadStream<K>(rays, count, ws);
     if (n == 0) return;
-    if (scene.triangles.blocks) traceStreamTriangles<N, K, AnyHit, Order>(scene.triangles, n, ws);
+    traceStreamLists<N, K, AnyHit, Order, Leaves>(scene, rays, n, ws);
     for (size_t s = 0; s < n; ++s) {
-        uint32_t i = ws.rayOf[s];
-        const Ray& ray = rays[i];
+        const uint32_t i = ws.rayOf[s];
         if constexpr (AnyHit) {
-            bool occluded = ws.tfar[s] == -__builtin_huge_valf();
-            if (!occluded && scene.user.prims) {
-                Hit hit;
-                hit.t = ray.tfar;
-                TraversalCost cost;
-                occluded = traceUser<N, kNodeSimdWidth<N>, true>(scene.user, ray, makeSingleRayState(ray), hit, cost);
-            }
-            occludedOut[i] = occluded ? 1 : 0;
+            occludedOut[i] = ws.tfar[s] == -__builtin_huge_valf() ? 1 : 0;
         } else {
-            Hit hit = ws.prim[s] == kNoPrim ? Hit{ws.tfar[s], 0, 0, kInvalidId, kInvalidId}
-                                            : Hit{ws.tfar[s], ws.u[s], ws.v[s], uint32_t(ws.prim[s]), 0};
-            if (scene.user.prims) {
-                TraversalCost cost;
-                traceUser<N, kNodeSimdWidth<N>, false>(scene.user, ray, makeSingleRayState(ray), hit, cost);
-            }
-            hitsOut[i] = hit.valid() ? hit : Hit{};
+            const Hit hit = ws.prim[s] != kNoPrim        ? Hit{ws.tfar[s], ws.u[s], ws.v[s], uint32_t(ws.prim[s]), 0}
+                            : ws.userGeomId[s] != kInvalidId ? Hit{ws.tfar[s], ws.u[s], ws.v[s], ws.userPrimId[s], ws.userGeomId[s]}
+                                                             : Hit{};
+            hitsOut[i] = hit;
         }
     }
 }

@@ -1,0 +1,51 @@
+#pragma once
+// The leaf intersector of a scene's BVH: what every traversal kind (single rays, packets, large
+// packets, streams) calls at a leaf, by the leaf's type: triangle blocks or user primitives. A new
+// leaf type (another triangle layout, instances) is a new branch here; the traversals stay as they
+// are.
+#include "kernels/triangle_leaf.h"
+#include "kernels/user_leaf.h"
+
+#include "simd/isa_namespace.h"
+
+namespace wideray {
+inline namespace WIDERAY_ISA {
+
+struct SceneLeafIntersector {
+    SceneLeaves leaves;
+
+    /// One ray; closest-hit updates `hit`, any-hit returns true when the leaf occludes the ray.
+    /// TriW = 1 tests a block's triangles one by one (the reference), kBlockSize all at once.
+    template <int TriW, bool AnyHit>
+    [[gnu::always_inline]] bool single(NodeRef leaf, const SingleRayState& s, const Ray& ray, Hit& hit,
+                                       TraversalCost& cost) const {
+        if (leaf.isUserLeaf()) return intersectUserLeaf<AnyHit>(leaves, leaf, ray, hit, cost);
+        for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b) {
+            cost.primitives += kBlockSize;
+            if (intersectBlock<TriW, AnyHit>(leaves.blocks[b], s, ray, hit)) return true;
+        }
+        return false;
+    }
+
+    /// The active lanes of a packet; any-hit returns the lanes the leaf occludes (their t becomes
+    /// -inf). Packets whose triangles are tested need the watertight fields of `p`.
+    template <int K, bool AnyHit, class UserHits>
+    [[gnu::always_inline]] vbool<K> packet(NodeRef leaf, const PacketRay<K>& p, vbool<K> active, PacketHit<K>& h,
+                                           UserHits& user, TraversalCost& cost) const {
+        if (leaf.isUserLeaf()) return intersectUserLeafPacket<K, AnyHit>(leaves, leaf, active, h, user, cost);
+        vbool<K> occluded(false);
+        for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b) {
+            const vbool<K> hit = intersectBlockPacket<K, AnyHit>(leaves.blocks[b], p, active, h);
+            if constexpr (AnyHit) {
+                occluded |= hit;
+                h.t = select(hit, vfloat<K>(-__builtin_huge_valf()), h.t);
+                active = andNot(active, hit);
+                if (none(active)) break;
+            }
+        }
+        return occluded;
+    }
+};
+
+} // namespace WIDERAY_ISA
+} // namespace wideray

@@ -1,0 +1,167 @@
+#pragma once
+// What a kernel knows of the rays it traces: one ray's precomputed box and triangle test, or a
+// packet of K rays in SIMD registers (origins, reciprocal directions, the watertight test's axes)
+// with their closest hits so far.
+#include <cstdint>
+
+#include "core/ray.h"
+#include "kernels/box_test.h"
+#include "kernels/watertight.h"
+
+#include "simd/isa_namespace.h"
+
+namespace wideray {
+inline namespace WIDERAY_ISA {
+
+struct SingleRayState {
+    BoxRay box;
+    WatertightRay<float, int32_t> woop;
+};
+
+inline SingleRayState makeSingleRayState(const Ray& ray) {
+    return {makeBoxRay(ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz),
+            makeWatertightRay<float, int32_t>(ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz)};
+}
+
+template <int K>
+struct PacketRay {
+    vfloat<K> ox, oy, oz, rdx, rdy, rdz, tnear;
+    vbool<K> negX, negY, negZ;
+    WatertightRay<vfloat<K>, vint<K>> woop;
+    // Coherent packets usually share the direction octant and the dominant axes; then planes and
+    // vertex coordinates are picked once per packet instead of per lane (same arithmetic).
+    bool uniformOctant = false, uniformAxes = false;
+    bool negXs = false, negYs = false, negZs = false;
+    int kx = 0, ky = 0, kz = 0;
+    vfloat<K> okx, oky, okz;  ///< the origin permuted to (kx, ky, kz), when uniformAxes
+};
+
+/// Finds out whether the active lanes share the direction octant (see PacketRay).
+template <int K>
+inline void classifyOctant(PacketRay<K>& p, uint32_t lanes) {
+    uint32_t nx = movemask(p.negX) & lanes, ny = movemask(p.negY) & lanes, nz = movemask(p.negZ) & lanes;
+    p.uniformOctant = (nx == 0 || nx == lanes) && (ny == 0 || ny == lanes) && (nz == 0 || nz == lanes);
+    p.negXs = nx != 0; p.negYs = ny != 0; p.negZs = nz != 0;
+}
+
+/// Finds out whether the active lanes share the watertight test's axes (see PacketRay).
+template <int K>
+inline void classifyAxes(PacketRay<K>& p, uint32_t lanes) {
+    p.uniformAxes = false;
+    if (!lanes) return;
+    alignas(64) int32_t kx[K], ky[K], kz[K];
+    p.woop.kx.store(kx); p.woop.ky.store(ky); p.woop.kz.store(kz);
+    int first = __builtin_ctz(lanes);
+    p.kx = kx[first]; p.ky = ky[first]; p.kz = kz[first];
+    p.uniformAxes = true;
+    for (uint32_t l = lanes; l; l &= l - 1) {
+        int i = __builtin_ctz(l);
+        p.uniformAxes = p.uniformAxes && kx[i] == p.kx && ky[i] == p.ky && kz[i] == p.kz;
+    }
+    if (p.uniformAxes) {
+        const vfloat<K>* o[3] = {&p.ox, &p.oy, &p.oz};
+        p.okx = *o[p.kx]; p.oky = *o[p.ky]; p.okz = *o[p.kz];
+    }
+}
+
+/// Hits in SIMD registers; primId is INT32_MAX for "none yet" so that the tie rule is one compare.
+template <int K>
+struct PacketHit {
+    vfloat<K> t, u, v;
+    vint<K> primId;
+};
+
+constexpr int32_t kNoPrim = INT32_MAX;
+
+/// Loads up to K rays; invalid and missing lanes get tnear = +inf, tfar = -inf and stay inactive.
+template <int K>
+inline vbool<K> loadPacket(const Ray* rays, int count, PacketRay<K>& p, PacketHit<K>& h) {
+    using F = vfloat<K>;
+    alignas(64) float ox[K], oy[K], oz[K], dx[K], dy[K], dz[K], tn[K], tf[K];
+    for (int i = 0; i < K; ++i) {
+        const Ray& r = rays[i < count ? i : 0];
+        ox[i] = r.ox; oy[i] = r.oy; oz[i] = r.oz;
+        dx[i] = r.dx; dy[i] = r.dy; dz[i] = r.dz;
+        tn[i] = r.tnear; tf[i] = r.tfar;
+    }
+    alignas(64) static constexpr int32_t kLane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+    F Ox = F::load(ox), Oy = F::load(oy), Oz = F::load(oz), Dx = F::load(dx), Dy = F::load(dy), Dz = F::load(dz);
+    F tnear = F::load(tn), tfar = F::load(tf);
+    const F zero(0.0f), inf(__builtin_huge_valf());
+    // isValidRay, lane by lane: finite origin and direction, a non-zero direction, tnear <= tfar.
+    vbool<K> valid = (vint<K>::load(kLane) < vint<K>(count)) & isFinite(Ox) & isFinite(Oy) & isFinite(Oz) &
+                     isFinite(Dx) & isFinite(Dy) & isFinite(Dz) &
+                     andNot(vbool<K>(true), (Dx == zero) & (Dy == zero) & (Dz == zero)) & (tnear <= tfar) &
+                     (tnear < inf);
+    const F one(1.0f);
+    Dx = select(valid, Dx, zero); Dy = select(valid, Dy, zero); Dz = select(valid, Dz, one);
+    p.ox = select(valid, Ox, zero); p.oy = select(valid, Oy, zero); p.oz = select(valid, Oz, zero);
+    p.rdx = one / Dx; p.rdy = one / Dy; p.rdz = one / Dz;
+    p.negX = p.rdx < zero; p.negY = p.rdy < zero; p.negZ = p.rdz < zero;
+    p.tnear = select(valid, tnear, inf);
+    p.woop = makeWatertightRay<F, vint<K>>(p.ox, p.oy, p.oz, Dx, Dy, Dz);
+    h.t = select(valid, tfar, -inf);
+    h.u = h.v = zero;
+    h.primId = vint<K>(kNoPrim);
+    classifyOctant(p, movemask(valid));
+    classifyAxes(p, movemask(valid));
+    return valid;
+}
+
+/// The hit registers of a packet lane by lane.
+template <int K>
+struct PacketLanes {
+    alignas(64) float t[K], u[K], v[K];
+    alignas(64) int32_t prim[K];
+
+    void store(const PacketHit<K>& h) { h.t.store(t); h.u.store(u); h.v.store(v); h.primId.store(prim); }
+    void load(PacketHit<K>& h) const {
+        h.t = vfloat<K>::load(t); h.u = vfloat<K>::load(u); h.v = vfloat<K>::load(v); h.primId = vint<K>::load(prim);
+    }
+};
+
+/// Where the lanes of a packet whose closest hit is a user primitive keep its ids: the hit registers
+/// hold its t, u and v with primId kNoPrim, so that any triangle (geomId 0) at the same t wins the tie
+/// as the hit order says. `UserHits` is PacketUserHits for packets and the stream's own arrays for
+/// streams: ray(lane), geomId(lane) and primId(lane).
+template <int K>
+struct PacketUserHits {
+    const Ray* rays = nullptr;  ///< the packet's rays by lane
+    uint32_t geomIds[K], primIds[K];
+
+    PacketUserHits() = default;
+    explicit PacketUserHits(const Ray* packetRays) : rays(packetRays) {
+        for (int i = 0; i < K; ++i) geomIds[i] = primIds[i] = kInvalidId;
+    }
+    const Ray& ray(int lane) const { return rays[lane]; }
+    uint32_t& geomId(int lane) { return geomIds[lane]; }
+    uint32_t& primId(int lane) { return primIds[lane]; }
+};
+
+/// The closest hit of one lane so far.
+template <int K, class UserHits>
+inline Hit laneHit(const PacketLanes<K>& lanes, UserHits& user, int lane) {
+    if (lanes.prim[lane] != kNoPrim) return {lanes.t[lane], lanes.u[lane], lanes.v[lane], uint32_t(lanes.prim[lane]), 0};
+    if (user.geomId(lane) != kInvalidId)
+        return {lanes.t[lane], lanes.u[lane], lanes.v[lane], user.primId(lane), user.geomId(lane)};
+    return {lanes.t[lane], 0, 0, kInvalidId, kInvalidId};
+}
+
+/// Makes `hit` (a hit, or the miss laneHit gave) the lane's closest hit.
+template <int K, class UserHits>
+inline void setLaneHit(PacketLanes<K>& lanes, UserHits& user, int lane, const Hit& hit) {
+    if (!hit.valid()) return;
+    lanes.t[lane] = hit.t;
+    lanes.u[lane] = hit.u;
+    lanes.v[lane] = hit.v;
+    if (hit.geomId == 0) {
+        lanes.prim[lane] = int32_t(hit.primId);
+        return;
+    }
+    lanes.prim[lane] = kNoPrim;
+    user.geomId(lane) = hit.geomId;
+    user.primId(lane) = hit.primId;
+}
+
+} // namespace WIDERAY_ISA
+} // namespace wideray

@@ -1,0 +1,100 @@
+#pragma once
+// The triangle leaves: blocks of kBlockSize triangles against one ray (all triangles of the block
+// in one SIMD test) or against a packet (all rays in one SIMD test, triangle after triangle), with
+// the reference's watertight arithmetic either way.
+#include "accel/triangle_block.h"
+#include "kernels/hit_order.h"
+#include "kernels/ray_state.h"
+
+#include "simd/isa_namespace.h"
+
+namespace wideray {
+inline namespace WIDERAY_ISA {
+
+/// Tests one triangle block; closest-hit updates `hit` (and returns false), any-hit returns true
+/// at the first hit.
+template <int TriW, bool AnyHit>
+inline bool intersectBlock(const TriangleBlock<kBlockSize>& block, const SingleRayState& s, const Ray& ray,
+                           Hit& hit) {
+    if constexpr (TriW == 1) {
+        for (int i = 0; i < kBlockSize && block.primId[i] != kInvalidId; ++i) {
+            float t = 0, u = 0, v = 0;
+            bool h = intersectWatertight(s.woop, true, block.v0x[i], block.v0y[i], block.v0z[i], block.v1x[i],
+                                         block.v1y[i], block.v1z[i], block.v2x[i], block.v2y[i], block.v2z[i],
+                                         ray.tnear, hit.t, t, u, v);
+            if (!h) continue;
+            if constexpr (AnyHit) return true;
+            if (isCloser(t, 0, block.primId[i], hit)) hit = {t, u, v, block.primId[i], 0};
+        }
+        return false;
+    } else {
+        static_assert(TriW == kBlockSize);
+        // One ray: its axes are scalars, so the block's coordinate arrays are picked by pointer.
+        using F = vfloat<TriW>;
+        using I = vint<TriW>;
+        const WatertightRay<float, int32_t>& w = s.woop;
+        const float* v0[3] = {block.v0x, block.v0y, block.v0z};
+        const float* v1[3] = {block.v1x, block.v1y, block.v1z};
+        const float* v2[3] = {block.v2x, block.v2y, block.v2z};
+        const float o[3] = {w.ox, w.oy, w.oz};
+        const F ox(o[w.kx]), oy(o[w.ky]), oz(o[w.kz]);
+        auto valid = I::loadu(block.primId) != I(int32_t(kInvalidId));
+        F t(0.0f), u(0.0f), v(0.0f);
+        auto h = intersectWatertightPermuted(
+            F(w.sx), F(w.sy), F(w.sz), valid, F::load(v0[w.kx]) - ox, F::load(v0[w.ky]) - oy, F::load(v0[w.kz]) - oz,
+            F::load(v1[w.kx]) - ox, F::load(v1[w.ky]) - oy, F::load(v1[w.kz]) - oz, F::load(v2[w.kx]) - ox,
+            F::load(v2[w.ky]) - oy, F::load(v2[w.kz]) - oz, F(ray.tnear), F(hit.t), t, u, v);
+        uint32_t lanes = movemask(h);
+        if (!lanes) return false;
+        if constexpr (AnyHit) return true;
+        alignas(64) float ts[TriW], us[TriW], vs[TriW];
+        t.store(ts); u.store(us); v.store(vs);
+        for (; lanes; lanes &= lanes - 1) {
+            int i = __builtin_ctz(lanes);
+            if (isCloser(ts[i], 0, block.primId[i], hit)) hit = {ts[i], us[i], vs[i], block.primId[i], 0};
+        }
+        return false;
+    }
+}
+
+/// All K rays against the triangles of one block. Returns the lanes that hit (for any-hit).
+template <int K, bool AnyHit>
+[[gnu::always_inline]] inline vbool<K> intersectBlockPacket(const TriangleBlock<kBlockSize>& block, const PacketRay<K>& p,
+                                     vbool<K> active, PacketHit<K>& h) {
+    using F = vfloat<K>;
+    using I = vint<K>;
+    vbool<K> anyHit(false);
+    for (int j = 0; j < kBlockSize && block.primId[j] != kInvalidId; ++j) {
+        F t = h.t, u = h.u, v = h.v;
+        vbool<K> hit;
+        if (p.uniformAxes) {
+            const float v0[3] = {block.v0x[j], block.v0y[j], block.v0z[j]};
+            const float v1[3] = {block.v1x[j], block.v1y[j], block.v1z[j]};
+            const float v2[3] = {block.v2x[j], block.v2y[j], block.v2z[j]};
+            hit = intersectWatertightPermuted(p.woop.sx, p.woop.sy, p.woop.sz, active, F(v0[p.kx]) - p.okx,
+                                              F(v0[p.ky]) - p.oky, F(v0[p.kz]) - p.okz, F(v1[p.kx]) - p.okx,
+                                              F(v1[p.ky]) - p.oky, F(v1[p.kz]) - p.okz, F(v2[p.kx]) - p.okx,
+                                              F(v2[p.ky]) - p.oky, F(v2[p.kz]) - p.okz, p.tnear, h.t, t, u, v);
+        } else {
+            hit = intersectWatertight(p.woop, active, F(block.v0x[j]), F(block.v0y[j]), F(block.v0z[j]),
+                                      F(block.v1x[j]), F(block.v1y[j]), F(block.v1z[j]), F(block.v2x[j]),
+                                      F(block.v2y[j]), F(block.v2z[j]), p.tnear, h.t, t, u, v);
+        }
+        if (none(hit)) continue;
+        if constexpr (AnyHit) {
+            anyHit |= hit;
+            active = andNot(active, hit);
+            continue;
+        }
+        I prim(int32_t(block.primId[j]));
+        vbool<K> closer = hit & ((t < h.t) | ((t == h.t) & (prim < h.primId)));
+        h.t = select(closer, t, h.t);
+        h.u = select(closer, u, h.u);
+        h.v = select(closer, v, h.v);
+        h.primId = select(closer, prim, h.primId);
+    }
+    return anyHit;
+}
+
+} // namespace WIDERAY_ISA
+} // namespace wideray
