@@ -41,12 +41,9 @@ std::vector<Ray> primaryRays(const Scene& scene, int width, int height) {
     CameraModel camera(scene.camera, width, height);
     std::vector<Ray> rays;
     rays.reserve(size_t(width) * height);
-    std::vector<uint32_t> morton = mortonPixelOrder(kTileSize);
-    for (const TileRect& tile : hilbertTiles(width, height, kTileSize))
-        for (uint32_t local : morton) {
-            int x = tile.x0 + int(local % kTileSize), y = tile.y0 + int(local / kTileSize);
-            if (x < tile.x1 && y < tile.y1) rays.push_back(camera.generate(float(x) + 0.5f, float(y) + 0.5f));
-        }
+    TileOrder(width, height, kTileSize).forEachPixel([&](int x, int y) {
+        rays.push_back(camera.generate(float(x) + 0.5f, float(y) + 0.5f));
+    });
     return rays;
 }
 
@@ -71,12 +68,9 @@ BenchRays makeBenchRays(const Scene& scene, const Tracer& reference, int width, 
         }
     // Pixel coordinates of each primary ray, for the per-pixel seed.
     std::vector<uint32_t> pixelOf;
-    std::vector<uint32_t> morton = mortonPixelOrder(kTileSize);
-    for (const TileRect& tile : hilbertTiles(width, height, kTileSize))
-        for (uint32_t local : morton) {
-            int x = tile.x0 + int(local % kTileSize), y = tile.y0 + int(local / kTileSize);
-            if (x < tile.x1 && y < tile.y1) pixelOf.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
-        }
+    TileOrder(width, height, kTileSize).forEachPixel([&](int x, int y) {
+        pixelOf.push_back(uint32_t(y) * uint32_t(width) + uint32_t(x));
+    });
     for (size_t i = 0; i < hits.size(); ++i) {
         if (!hits[i].valid()) continue;
         const Ray& ray = out.primary[i];

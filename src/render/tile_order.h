@@ -25,4 +25,33 @@ std::vector<TileRect> hilbertTiles(int width, int height, int tileSize);
 /// tileSize is a power of two.
 std::vector<uint32_t> mortonPixelOrder(int tileSize);
 
+/// The renderer's order of work on an image, which the benchmarks' ray sets reproduce: tiles along a
+/// Hilbert curve, the pixels of each tile in Morton order.
+class TileOrder {
+public:
+    TileOrder(int width, int height, int tileSize)
+        : tileSize_(tileSize), tiles_(hilbertTiles(width, height, tileSize)), morton_(mortonPixelOrder(tileSize)) {}
+
+    const std::vector<TileRect>& tiles() const { return tiles_; }
+
+    /// Calls fn(x, y) for the pixels of `tile` in Morton order.
+    template <class Fn>
+    void forEachPixel(const TileRect& tile, Fn fn) const {
+        for (uint32_t local : morton_) {
+            const int x = tile.x0 + int(local % uint32_t(tileSize_)), y = tile.y0 + int(local / uint32_t(tileSize_));
+            if (x < tile.x1 && y < tile.y1) fn(x, y);
+        }
+    }
+    /// Calls fn(x, y) for every pixel of the image, tile after tile.
+    template <class Fn>
+    void forEachPixel(Fn fn) const {
+        for (const TileRect& tile : tiles_) forEachPixel(tile, fn);
+    }
+
+private:
+    int tileSize_;
+    std::vector<TileRect> tiles_;
+    std::vector<uint32_t> morton_;
+};
+
 } // namespace wideray
