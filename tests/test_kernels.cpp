@@ -181,3 +181,47 @@ TEST(Kernels, EdgeCases) {
 
 } // namespace
 } // namespace wideray
+
+namespace wideray {
+namespace {
+
+/// The cost AOV counts the chosen kernel's own work: every kernel fills per-ray costs without
+/// changing its hits, the single-ray kernels agree with each other, and the packet and stream
+/// kernels (which visit nodes for groups of rays) report work of their own.
+TEST(Kernels, CostsMeasureTheChosenKernel) {
+    FlushToZeroScope ftz;
+    Scene scene = loadSceneOrMesh(std::filesystem::path(WIDERAY_SOURCE_DIR) / "scenes/default.json");
+    SceneAccel<8> accel(std::make_shared<const SceneGeometry>(scene));
+    const std::vector<Ray> rays = primaryRays(scene, 64, 64);
+    auto total = [](const std::vector<TraversalCost>& costs) {
+        uint64_t sum = 0;
+        for (const TraversalCost& c : costs) sum += c.nodes + c.primitives;
+        return sum;
+    };
+    for (Isa isa : availableIsas()) {
+        const KernelTable<8> table = kernelTable<8>(isa);
+        std::vector<TraversalCost> singleCosts(rays.size());
+        std::vector<Hit> scratch(rays.size());
+        table.find("single")->intersect(accel.view(), rays.data(), scratch.data(), rays.size(), singleCosts.data());
+        for (const Kernel<8>& kernel : table.rows) {
+            if (!kernel.available()) continue;
+            std::vector<Hit> plain(rays.size()), counted(rays.size());
+            std::vector<TraversalCost> costs(rays.size(), TraversalCost{777, 777});
+            kernel.intersect(accel.view(), rays.data(), plain.data(), rays.size(), nullptr);
+            kernel.intersect(accel.view(), rays.data(), counted.data(), rays.size(), costs.data());
+            size_t uncounted = 0, changed = 0;
+            for (size_t i = 0; i < rays.size(); ++i) {
+                changed += std::memcmp(&plain[i], &counted[i], sizeof(Hit)) != 0;
+                uncounted += counted[i].valid() && (costs[i].primitives == 0 || costs[i].primitives == 777);
+            }
+            EXPECT_EQ(changed, 0u) << kernel.name << " " << isaName(isa);
+            EXPECT_EQ(uncounted, 0u) << kernel.name << " " << isaName(isa) << ": hits without counted tests";
+            const std::string name = kernel.name;
+            if (name == "scalar") EXPECT_EQ(total(costs), total(singleCosts)) << "same order, same work";
+            else if (name != "single") EXPECT_NE(total(costs), total(singleCosts)) << name << " " << isaName(isa);
+        }
+    }
+}
+
+} // namespace
+} // namespace wideray

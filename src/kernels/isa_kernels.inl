@@ -70,12 +70,12 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
     }
 }
 
-/// Packets of K consecutive rays; per-ray costs (the cost AOV) come from the single-ray kernel.
+/// Packets of K consecutive rays.
 template <int N, int K>
 void packetIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
-    if (costs) return singleIntersect<N>(scene, rays, hits, count, costs);
     for (size_t i = 0; i < count; i += K)
-        tracePacket<N, K, false>(scene, rays + i, int(count - i < K ? count - i : K), hits + i, nullptr);
+        tracePacket<N, K, false>(scene, rays + i, int(count - i < K ? count - i : K), hits + i, nullptr,
+                                 costs ? costs + i : nullptr);
 }
 
 template <int N, int K>
@@ -87,10 +87,10 @@ void packetOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occlude
 /// Packets of 256 rays (a 16x16 tile in Morton order), sub-packets as wide as the ISA allows.
 template <int N>
 void largePacketIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
-    if (costs) return singleIntersect<N>(scene, rays, hits, count, costs);
     constexpr int K = kMaxWidth, P = 256 / K;
     for (size_t i = 0; i < count; i += K * P)
-        traceLargePacket<N, K, P, false>(scene, rays + i, int(count - i < K * P ? count - i : K * P), hits + i, nullptr);
+        traceLargePacket<N, K, P, false>(scene, rays + i, int(count - i < K * P ? count - i : K * P), hits + i, nullptr,
+                                         costs ? costs + i : nullptr);
 }
 
 template <int N>
@@ -106,11 +106,10 @@ constexpr size_t kStreamSize = 4096;
 
 template <int N, StreamOrder Order>
 void streamIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
-    if (costs) return singleIntersect<N>(scene, rays, hits, count, costs);
     StreamWorkspace& ws = StreamWorkspace::forThisThread();
     for (size_t i = 0; i < count; i += kStreamSize)
         traceStream<N, kMaxWidth, false, Order>(scene, rays + i, count - i < kStreamSize ? count - i : kStreamSize,
-                                                hits + i, nullptr, ws);
+                                                hits + i, nullptr, ws, costs ? costs + i : nullptr);
 }
 
 template <int N, StreamOrder Order>

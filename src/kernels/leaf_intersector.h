@@ -28,13 +28,15 @@ struct SceneLeafIntersector {
     }
 
     /// The active lanes of a packet; any-hit returns the lanes the leaf occludes (their t becomes
-    /// -inf). Packets whose triangles are tested need the watertight fields of `p`.
-    template <int K, bool AnyHit, class UserHits>
+    /// -inf). Packets whose triangles are tested need the watertight fields of `p`. `cost` counts
+    /// per lane (PacketCost or the stream's).
+    template <int K, bool AnyHit, class UserHits, class Cost>
     [[gnu::always_inline]] vbool<K> packet(NodeRef leaf, const PacketRay<K>& p, vbool<K> active, PacketHit<K>& h,
-                                           UserHits& user, TraversalCost& cost) const {
+                                           UserHits& user, Cost& cost) const {
         if (leaf.isUserLeaf()) return intersectUserLeafPacket<K, AnyHit>(leaves, leaf, active, h, user, cost);
         vbool<K> occluded(false);
         for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b) {
+            cost.test(movemask(active), kBlockSize);
             const vbool<K> hit = intersectBlockPacket<K, AnyHit>(leaves.blocks[b], p, active, h);
             if constexpr (AnyHit) {
                 occluded |= hit;

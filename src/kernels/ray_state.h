@@ -138,6 +138,37 @@ struct PacketUserHits {
     uint32_t& primId(int lane) { return primIds[lane]; }
 };
 
+/// The traversal work of each lane of a packet (the cost AOV), counted only when asked for: box tests
+/// of inner nodes the lane's subtree reached while it was active, and primitive tests.
+template <int K>
+struct PacketCost {
+    bool counting = false;
+    uint32_t nodes[K], primitives[K];
+
+    void start(bool count) {
+        counting = count;
+        if (count)
+            for (int i = 0; i < K; ++i) nodes[i] = primitives[i] = 0;
+    }
+    void visit(uint32_t lanes) {
+        if (counting)
+            for (; lanes; lanes &= lanes - 1) ++nodes[__builtin_ctz(lanes)];
+    }
+    void test(uint32_t lanes, uint32_t count) {
+        if (counting)
+            for (; lanes; lanes &= lanes - 1) primitives[__builtin_ctz(lanes)] += count;
+    }
+    void add(int lane, const TraversalCost& c) {
+        if (!counting) return;
+        nodes[lane] += c.nodes;
+        primitives[lane] += c.primitives;
+    }
+    void write(int count, TraversalCost* out) const {
+        if (counting && out)
+            for (int i = 0; i < count; ++i) out[i] = {nodes[i], primitives[i]};
+    }
+};
+
 /// The closest hit of one lane so far.
 template <int K, class UserHits>
 inline Hit laneHit(const PacketLanes<K>& lanes, UserHits& user, int lane) {

@@ -59,24 +59,26 @@ struct LeafBox {
 
 /// Each sub-packet through tracePacket: rays that spread too far for interval culling.
 template <int N, int K, bool AnyHit, class Leaves>
-inline void traceSubPackets(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut) {
+inline void traceSubPackets(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut,
+                            TraversalCost* costsOut) {
     for (int first = 0; first < count; first += K) {
         const int n = count - first < K ? count - first : K;
         tracePacket<N, K, AnyHit, Leaves>(scene, rays + first, n, AnyHit ? nullptr : hitsOut + first,
-                                          AnyHit ? occludedOut + first : nullptr);
+                                          AnyHit ? occludedOut + first : nullptr, costsOut ? costsOut + first : nullptr);
     }
 }
 
-/// Closest hits (or occlusion) of up to K * P rays, P sub-packets of K.
+/// Closest hits (or occlusion) of up to K * P rays, P sub-packets of K, and their costs where
+/// `costsOut` is given (an inner node tested for the packet counts for each of its unfinished rays).
 template <int N, int K, int P, bool AnyHit, class Leaves = SceneLeafIntersector>
 inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
-                             uint8_t* occludedOut) {
+                             uint8_t* occludedOut, TraversalCost* costsOut = nullptr) {
     using F = vfloat<K>;
     const Leaves leaves{scene.leaves};
     PacketRay<K> packets[P];
     PacketHit<K> hits[P];
     PacketUserHits<K> users[P];
-    TraversalCost cost;
+    PacketCost<K> costs[P];
     vbool<K> valid[P], done[P];
     const int subCount = (count + K - 1) / K;
     static_assert(P <= 64);
@@ -85,6 +87,7 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
     for (int s = 0; s < subCount; ++s) {
         valid[s] = loadPacket(rays + s * K, count - s * K < K ? count - s * K : K, packets[s], hits[s]);
         users[s] = PacketUserHits<K>(rays + s * K);
+        costs[s].start(costsOut != nullptr);
         done[s] = andNot(vbool<K>(true), valid[s]);
         if (none(valid[s])) continue;
         const PacketRay<K>& first = packets[__builtin_ctzll(anyValid | (uint64_t(1) << s))];
@@ -92,7 +95,7 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
                     packets[s].negYs == first.negYs && packets[s].negZs == first.negZs;
         anyValid |= uint64_t(1) << s;
     }
-    if (!oneOctant || scene.root.isLeaf()) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut);
+    if (!oneOctant || scene.root.isLeaf()) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
 
     if (anyValid) {
         RayInterval iv;
@@ -127,7 +130,7 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
             spread = max(spread, dHi - dLo);
             extent = max(extent, max(abs(dLo), abs(dHi)));
         }
-        if (!(spread <= 0.1f * extent)) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut);
+        if (!(spread <= 0.1f * extent)) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
         // Clamp infinite reciprocals (zero direction components) so that 0 * inf cannot appear.
         for (int a = 0; a < 3; ++a) {
             iv.rdLo[a] = max(iv.rdLo[a], -3.0e38f); iv.rdHi[a] = min(iv.rdHi[a], 3.0e38f);
@@ -156,6 +159,11 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
             if (e.distance > tfarMax * kRobustFarScale) continue;
             if (!e.ref.isLeaf()) {
                 const WideNode<N>& node = scene.nodes[e.ref.index()];
+                if (costsOut)
+                    for (uint64_t bits = anyValid; bits; bits &= bits - 1) {
+                        const int s = __builtin_ctzll(bits);
+                        costs[s].visit(movemask(andNot(valid[s], done[s])));
+                    }
                 alignas(64) float tEntry[N];
                 uint32_t mask = intersectChildrenInterval<N>(node, iv, tfarMax, tEntry);
                 const int base = sp;
@@ -176,7 +184,7 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
                 active &= packetBoxEntry(b.lower[0], b.lower[1], b.lower[2], b.upper[0], b.upper[1], b.upper[2],
                                          packets[s], hits[s].t, active) < F(__builtin_huge_valf());
                 if (none(active)) continue;
-                const vbool<K> occluded = leaves.template packet<K, AnyHit>(e.ref, packets[s], active, hits[s], users[s], cost);
+                const vbool<K> occluded = leaves.template packet<K, AnyHit>(e.ref, packets[s], active, hits[s], users[s], costs[s]);
                 if constexpr (AnyHit) {
                     done[s] |= occluded;
                     if (all(done[s])) anyValid &= ~(uint64_t(1) << s);
@@ -191,6 +199,7 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
         const int n = count - s * K < K ? count - s * K : K;
         writePacketResults<K, AnyHit>(hits[s], users[s], movemask(valid[s]), movemask(done[s]), n,
                                       AnyHit ? nullptr : hitsOut + s * K, AnyHit ? occludedOut + s * K : nullptr);
+        costs[s].write(n, costsOut ? costsOut + s * K : nullptr);
     }
 }
 

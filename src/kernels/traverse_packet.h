@@ -60,16 +60,19 @@ inline void writePacketResults(const PacketHit<K>& h, UserHits& user, uint32_t v
     }
 }
 
-/// Closest hits (or occlusion) of up to K rays. At most K / 4 active rays finish a subtree one by one.
+/// Closest hits (or occlusion) of up to K rays, and their costs where `costsOut` is given. At most
+/// K / 4 active rays finish a subtree one by one.
 template <int N, int K, bool AnyHit, class Leaves = SceneLeafIntersector>
-inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut) {
+inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut,
+                        TraversalCost* costsOut = nullptr) {
     using F = vfloat<K>;
     constexpr int switchToSingle = K / 4;
     const Leaves leaves{scene.leaves};
     PacketRay<K> p;
     PacketHit<K> h;
     PacketUserHits<K> user(rays);
-    TraversalCost cost;
+    PacketCost<K> cost;
+    cost.start(costsOut != nullptr);
     const vbool<K> valid = loadPacket(rays, count, p, h);
     vbool<K> done = andNot(vbool<K>(true), valid);  // any-hit: lanes whose answer is known
     const F inf(__builtin_huge_valf());
@@ -95,8 +98,11 @@ inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, H
                 const int lane = __builtin_ctz(activeBits);
                 const Ray& ray = rays[lane];
                 Hit hit = laneHit(lanes, user, lane);
-                if (traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(scene, e.ref, ray,
-                                                                                   makeSingleRayState(ray), hit, cost)) {
+                TraversalCost laneCost;
+                const bool occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(
+                    scene, e.ref, ray, makeSingleRayState(ray), hit, laneCost);
+                cost.add(lane, laneCost);
+                if (occluded) {
                     lanes.t[lane] = -__builtin_huge_valf();
                     lanes.prim[lane] = 0;
                 } else {
@@ -111,6 +117,7 @@ inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, H
         NodeRef ref = e.ref;
         while (!ref.isLeaf()) {
             const WideNode<N>& node = scene.nodes[ref.index()];
+            cost.visit(movemask(active));
             // Push the hit children sorted by their nearest ray's entry, farthest first, then continue
             // with the nearest (any-hit: any occluder will do, so no order is kept).
             const int base = sp;
@@ -137,6 +144,7 @@ inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, H
     }
     writePacketResults<K, AnyHit>(h, user, movemask(valid), movemask(h.t == F(-__builtin_huge_valf())), count,
                                   hitsOut, occludedOut);
+    cost.write(count, costsOut);
 }
 
 } // namespace WIDERAY_ISA

@@ -133,20 +133,35 @@ inline void gatherWoop(const StreamWorkspace& ws, const ListChunk<K>& c, PacketR
     h.primId = c.fetch(ws.prim);
 }
 
-/// The user-primitive hits of a chunk's rays, kept in the workspace by stream slot.
+/// What the workspace keeps per stream slot for the rays of a chunk, lane by lane: the ids of hits on
+/// user primitives (PacketUserHits' interface) and the traversal work (PacketCost's).
 template <int K>
-struct StreamUserHits {
+struct StreamLanes {
     const Ray* rays;  ///< the caller's array
     StreamWorkspace& ws;
     alignas(64) int32_t slot[K];
 
-    StreamUserHits(const Ray* callerRays, StreamWorkspace& workspace, const vint<K>& slots)
+    StreamLanes(const Ray* callerRays, StreamWorkspace& workspace, const vint<K>& slots)
         : rays(callerRays), ws(workspace) {
         slots.store(slot);
     }
     const Ray& ray(int lane) const { return rays[ws.rayOf[slot[lane]]]; }
     uint32_t& geomId(int lane) { return ws.userGeomId[slot[lane]]; }
     uint32_t& primId(int lane) { return ws.userPrimId[slot[lane]]; }
+
+    void visit(uint32_t lanes) {
+        if (ws.countCost)
+            for (; lanes; lanes &= lanes - 1) ++ws.costNodes[slot[__builtin_ctz(lanes)]];
+    }
+    void test(uint32_t lanes, uint32_t count) {
+        if (ws.countCost)
+            for (; lanes; lanes &= lanes - 1) ws.costPrimitives[slot[__builtin_ctz(lanes)]] += count;
+    }
+    void add(int lane, const TraversalCost& c) {
+        if (!ws.countCost) return;
+        ws.costNodes[slot[lane]] += c.nodes;
+        ws.costPrimitives[slot[lane]] += c.primitives;
+    }
 };
 
 template <int K>
@@ -187,7 +202,6 @@ inline void traceStreamLeaf(const SceneView<N>& scene, const Leaves& leaves, con
     using F = vfloat<K>;
     const WideNode<N>* parent = e.recheck == kNoRecheck ? nullptr : &scene.nodes[e.recheck / N];
     const int slot = int(e.recheck % N);
-    TraversalCost cost;
     for (uint32_t at = e.begin; at < e.end; at += K) {
         const ListChunk<K> chunk = loadChunk<K>(&ws.arena[at], e.end - at);
         PacketRay<K> p;
@@ -202,8 +216,8 @@ inline void traceStreamLeaf(const SceneView<N>& scene, const Leaves& leaves, con
         if (none(active)) continue;
         gatherWoop(ws, chunk, p, h);
         if (!e.ref.isUserLeaf()) classifyAxes(p, movemask(active));
-        StreamUserHits<K> user(rays, ws, chunk.idx);
-        leaves.template packet<K, AnyHit>(e.ref, p, active, h, user, cost);
+        StreamLanes<K> lanes(rays, ws, chunk.idx);
+        leaves.template packet<K, AnyHit>(e.ref, p, active, h, lanes, lanes);
         scatterHits<K>(ws, chunk.idx, h, movemask(chunk.valid));
     }
 }
@@ -219,12 +233,13 @@ inline int liveChildren(const WideNode<N>& node, int live[N]) {
 
 /// Entry distances of the rays of a chunk into the node's live children (+inf: not entered).
 template <int N, int K>
-inline void childEntries(const WideNode<N>& node, const int* live, int liveCount, const StreamWorkspace& ws,
+inline void childEntries(const WideNode<N>& node, const int* live, int liveCount, StreamWorkspace& ws,
                          const ListChunk<K>& chunk, vfloat<K>* dist) {
     PacketRay<K> p;
     PacketHit<K> h;
     gatherPacket(ws, chunk, p, h);
     const vbool<K> active = chunk.valid & (p.tnear <= h.t);
+    if (ws.countCost) StreamLanes<K>(nullptr, ws, chunk.idx).visit(movemask(active));
     classifyOctant(p, movemask(active));
     for (int c = 0; c < liveCount; ++c) dist[c] = packetChildEntry<N, K>(node, live[c], p, h.t, active);
 }
@@ -358,15 +373,21 @@ inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t 
     }
 }
 
-/// Closest hits (AnyHit = false) or occlusion of `count` rays as one stream.
+/// Closest hits (AnyHit = false) or occlusion of `count` rays as one stream, and their costs where
+/// `costsOut` is given.
 template <int N, int K, bool AnyHit, StreamOrder Order, class Leaves = SceneLeafIntersector>
 inline void traceStream(const SceneView<N>& scene, const Ray* rays, size_t count, Hit* hitsOut, uint8_t* occludedOut,
-                        StreamWorkspace& ws) {
+                        StreamWorkspace& ws, TraversalCost* costsOut = nullptr) {
     for (size_t i = 0; i < count; ++i) {
         if constexpr (AnyHit) occludedOut[i] = 0;
         else hitsOut[i] = Hit{};
     }
     size_t n = loadStream<K>(rays, count, ws);
+    ws.countCost = costsOut != nullptr;
+    if (costsOut) {
+        for (size_t i = 0; i < count; ++i) costsOut[i] = TraversalCost{};
+        for (size_t s = 0; s < n; ++s) ws.costNodes[s] = ws.costPrimitives[s] = 0;
+    }
     if (n == 0) return;
     traceStreamLists<N, K, AnyHit, Order, Leaves>(scene, rays, n, ws);
     for (size_t s = 0; s < n; ++s) {
@@ -379,6 +400,7 @@ inline void traceStream(const SceneView<N>& scene, const Ray* rays, size_t count
                                                              : Hit{};
             hitsOut[i] = hit;
         }
+        if (costsOut) costsOut[i] = {ws.costNodes[s], ws.costPrimitives[s]};
     }
 }
 

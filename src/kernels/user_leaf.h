@@ -29,16 +29,18 @@ inline bool intersectUserLeaf(const SceneLeaves& leaves, NodeRef leaf, const Ray
 
 /// The active lanes of a packet against the leaf's primitives, one lane at a time. Any-hit returns
 /// the lanes found occluded (their t becomes -inf).
-template <int K, bool AnyHit, class UserHits>
+template <int K, bool AnyHit, class UserHits, class Cost>
 inline vbool<K> intersectUserLeafPacket(const SceneLeaves& leaves, NodeRef leaf, const vbool<K>& active,
-                                        PacketHit<K>& h, UserHits& user, TraversalCost& cost) {
+                                        PacketHit<K>& h, UserHits& user, Cost& cost) {
     PacketLanes<K> lanes;
     lanes.store(h);
     for (uint32_t bits = movemask(active); bits; bits &= bits - 1) {
         const int lane = __builtin_ctz(bits);
         Hit hit = laneHit(lanes, user, lane);
-        if (intersectUserLeaf<AnyHit>(leaves, leaf, user.ray(lane), hit, cost)) lanes.t[lane] = -__builtin_huge_valf();
+        TraversalCost laneCost;
+        if (intersectUserLeaf<AnyHit>(leaves, leaf, user.ray(lane), hit, laneCost)) lanes.t[lane] = -__builtin_huge_valf();
         else if constexpr (!AnyHit) setLaneHit(lanes, user, lane, hit);
+        cost.add(lane, laneCost);
     }
     lanes.load(h);
     if constexpr (AnyHit) return active & (h.t == vfloat<K>(-__builtin_huge_valf()));
