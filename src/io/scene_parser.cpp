@@ -1,4 +1,4 @@
-// Scene files: JSON -> Scene with every value checked, and Scene -> JSON for round trips.
+// JSON -> Scene with every value checked (docs/scene-format.md).
 #include "io/scene_parser.h"
 
 #include <algorithm>
@@ -7,166 +7,27 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <set>
 #include <sstream>
-#include <stdexcept>
 #include <unordered_map>
 
 #include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/matrix_transform.hpp>
-#include <nlohmann/json.hpp>
 
-#include "core/error.h"
-#include "io/mesh_generators.h"
 #include "io/image_io.h"
+#include "io/json_document.h"
+#include "io/mesh_generators.h"
 #include "io/mesh_io.h"
+#include "io/scene_vocabulary.h"
 #include "shading/material_model.h"
 
 namespace wideray {
 namespace {
 
-// Numbers are parsed with strtof and printed as the shortest text that reads back as the same
-// float, so writeScene -> parseScene reproduces every float exactly.
-using Json = nlohmann::basic_json<nlohmann::ordered_map, std::vector, std::string, bool, std::int64_t,
-                                  std::uint64_t, float>;
-
-size_t editDistance(const std::string& a, const std::string& b) {
-    std::vector<size_t> previous(b.size() + 1), current(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) previous[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        current[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j)
-            current[j] = std::min({previous[j] + 1, current[j - 1] + 1, previous[j - 1] + (a[i - 1] != b[j - 1])});
-        std::swap(previous, current);
-    }
-    return previous[b.size()];
-}
-
-/// " (did you mean "x"?)" for the closest candidate within edit distance 2, else "".
-std::string suggestion(const std::string& word, const std::vector<std::string>& candidates) {
-    const std::string* best = nullptr;
-    size_t bestDistance = 3;
-    for (const std::string& candidate : candidates) {
-        const size_t d = editDistance(word, candidate);
-        if (d < bestDistance) bestDistance = d, best = &candidate;
-    }
-    return best ? " (did you mean \"" + *best + "\"?)" : "";
-}
-
-std::string joined(const std::vector<std::string>& words) {
-    std::string s;
-    for (const std::string& w : words) s += (s.empty() ? "" : ", ") + w;
-    return s;
-}
-
-std::string describe(const Json& value) {
-    if (value.is_array()) return "an array of " + std::to_string(value.size()) + " elements";
-    if (value.is_object()) return "an object";
-    if (value.is_number()) return "a number";
-    if (value.is_string()) return "a string";
-    if (value.is_boolean()) return "a boolean";
-    return "null";
-}
-
-/// A JSON value with the key path that leads to it ("objects[2].transform.scale").
-struct Node {
-    const Json& value;
-    std::string path;
-
-    bool has(const std::string& key) const { return value.contains(key); }
-    Node operator[](const std::string& key) const { return {value.at(key), path.empty() ? key : path + "." + key}; }
-    Node operator[](size_t index) const { return {value.at(index), path + "[" + std::to_string(index) + "]"}; }
-};
-
-/// Follows nlohmann's parse events to know the key path of the value being read, so that duplicate
-/// keys (which nlohmann would silently resolve to the last) and out-of-range numbers can name it.
-class KeyPathTracker {
+class SceneReader : JsonReader {
 public:
-    explicit KeyPathTracker(std::string file) : file_(std::move(file)) {}
-
-    bool operator()(int, Json::parse_event_t event, Json& parsed) {
-        using Event = Json::parse_event_t;
-        switch (event) {
-        case Event::object_start: frames_.emplace_back(true); break;
-        case Event::array_start: frames_.emplace_back(false); break;
-        case Event::key: {
-            Frame& frame = frames_.back();
-            frame.key = parsed.get<std::string>();
-            if (!frame.keys.insert(frame.key).second)
-                throw InputError(file_, currentPath(), "duplicate key \"" + frame.key + "\"");
-            break;
-        }
-        case Event::object_end:
-        case Event::array_end: frames_.pop_back(); [[fallthrough]];
-        case Event::value:
-            if (!frames_.empty() && !frames_.back().isObject) ++frames_.back().index;
-            break;
-        }
-        return true;
-    }
-
-    /// The path of the value being read, such as "lights[1].position[2]".
-    std::string currentPath() const {
-        std::string path;
-        for (const Frame& frame : frames_) {
-            if (frame.isObject) path += (path.empty() ? "" : ".") + frame.key;
-            else path += "[" + std::to_string(frame.index) + "]";
-        }
-        return path;
-    }
-
-private:
-    struct Frame {
-        explicit Frame(bool object) : isObject(object) {}
-        bool isObject;
-        std::set<std::string> keys;
-        std::string key;
-        size_t index = 0;
-    };
-
-    std::string file_;
-    std::vector<Frame> frames_;
-};
-
-std::string lineAndColumn(const std::string& text, size_t byte) {
-    const size_t end = std::min(byte > 0 ? byte - 1 : 0, text.size());  // nlohmann counts from 1
-    size_t line = 1, lineStart = 0;
-    for (size_t i = 0; i < end; ++i)
-        if (text[i] == '\n') ++line, lineStart = i + 1;
-    return "line " + std::to_string(line) + ", column " + std::to_string(end - lineStart + 1);
-}
-
-Json parseJson(const std::string& text, const std::string& file) {
-    // std::function copies its callable, so the tracker is shared to be asked for the path afterwards.
-    auto tracker = std::make_shared<KeyPathTracker>(file);
-    auto callback = [tracker](int depth, Json::parse_event_t event, Json& parsed) { return (*tracker)(depth, event, parsed); };
-    try {
-        return Json::parse(text, callback, true, true);
-    } catch (const Json::parse_error& e) {
-        // nlohmann's message is "[json.exception.parse_error.101] parse error at ...: <what>".
-        const std::string what = e.what();
-        const size_t colon = what.find(": ", what.find("parse error"));
-        throw InputError(file, lineAndColumn(text, e.byte),
-                         "malformed JSON: " + (colon == std::string::npos ? what : what.substr(colon + 2)));
-    } catch (const Json::out_of_range&) {
-        // nlohmann refuses numbers that overflow a float (the only way to write Inf in JSON).
-        throw InputError(file, tracker->currentPath(), "number is out of range (not a finite 32-bit float)");
-    }
-}
-
-const std::vector<std::string> kShapes = {"cube", "icosphere", "torus", "quad"};
-const std::vector<std::string> kMaterialTypes = {"diffuse", "plastic", "mirror", "conductor", "dielectric"};
-const std::vector<std::pair<std::string, TextureType>> kTextureTypes = {
-    {"checker", TextureType::Checker}, {"noise", TextureType::Noise},   {"fbm", TextureType::Fbm},
-    {"turbulence", TextureType::Turbulence}, {"marble", TextureType::Marble}, {"image", TextureType::Image}};
-
-bool hasOctaves(TextureType type) {
-    return type == TextureType::Fbm || type == TextureType::Turbulence || type == TextureType::Marble;
-}
-
-class SceneReader {
-public:
-    explicit SceneReader(const std::filesystem::path& file) : file_(file.string()), folder_(file.parent_path()) {
+    explicit SceneReader(const std::filesystem::path& file) : JsonReader(file.string()), folder_(file.parent_path()) {
         scene_.file = file;
     }
 
@@ -188,115 +49,6 @@ public:
     }
 
 private:
-    [[noreturn]] void fail(const std::string& path, const std::string& message) const {
-        throw InputError(file_, path, message);
-    }
-
-    // ---- typed values
-
-    void expectObject(const Node& n) const {
-        if (!n.value.is_object()) fail(n.path, "expected an object, got " + describe(n.value));
-    }
-
-    void expectArray(const Node& n) const {
-        if (!n.value.is_array()) fail(n.path, "expected an array, got " + describe(n.value));
-    }
-
-    void checkKeys(const Node& n, const std::vector<std::string>& allowed) const {
-        expectObject(n);
-        for (const auto& item : n.value.items()) {
-            if (std::find(allowed.begin(), allowed.end(), item.key()) != allowed.end()) continue;
-            const std::string hint = suggestion(item.key(), allowed);
-            fail(n[item.key()].path,
-                 "unknown key \"" + item.key() + "\"" + (hint.empty() ? " (valid keys: " + joined(allowed) + ")" : hint));
-        }
-    }
-
-    void require(const Node& n, const std::string& key) const {
-        if (!n.has(key)) fail(n.path, "missing required key \"" + key + "\"");
-    }
-
-    float number(const Node& n) const {
-        if (!n.value.is_number()) fail(n.path, "expected a number, got " + describe(n.value));
-        return n.value.get<float>();
-    }
-
-    float positive(const Node& n) const {
-        const float v = number(n);
-        if (!(v > 0.0f)) fail(n.path, "must be positive");
-        return v;
-    }
-
-    float nonNegative(const Node& n) const {
-        const float v = number(n);
-        if (v < 0.0f) fail(n.path, "must not be negative");
-        return v;
-    }
-
-    int integer(const Node& n, int lowest, int highest) const {
-        if (!n.value.is_number()) fail(n.path, "expected an integer, got " + describe(n.value));
-        const double v = n.value.get<double>();
-        if (v != std::floor(v)) fail(n.path, "expected an integer");
-        if (v < lowest || v > highest)
-            fail(n.path, "must be in " + std::to_string(lowest) + ".." + std::to_string(highest));
-        return int(v);
-    }
-
-    float unitInterval(const Node& n) const {
-        const float v = number(n);
-        if (!(v >= 0.0f && v <= 1.0f)) fail(n.path, "must be in [0, 1]");
-        return v;
-    }
-
-    bool boolean(const Node& n) const {
-        if (!n.value.is_boolean()) fail(n.path, "expected true or false, got " + describe(n.value));
-        return n.value.get<bool>();
-    }
-
-    std::string string(const Node& n) const {
-        if (!n.value.is_string()) fail(n.path, "expected a string, got " + describe(n.value));
-        return n.value.get<std::string>();
-    }
-
-    template <int L>
-    glm::vec<L, float> vector(const Node& n) const {
-        const std::string expected = "expected an array of " + std::to_string(L) + " numbers";
-        if (!n.value.is_array() || n.value.size() != L) fail(n.path, expected + ", got " + describe(n.value));
-        glm::vec<L, float> v;
-        for (int i = 0; i < L; ++i) {
-            if (!n.value[i].is_number()) fail(n.path, expected + ", got " + describe(n.value[i]) + " at index " + std::to_string(i));
-            v[i] = number(n[size_t(i)]);
-        }
-        return v;
-    }
-
-    glm::vec3 vec3(const Node& n) const { return vector<3>(n); }
-
-    glm::vec3 nonZeroVec3(const Node& n) const {
-        const glm::vec3 v = vec3(n);
-        if (v == glm::vec3(0.0f)) fail(n.path, "must not be the zero vector");
-        return v;
-    }
-
-    /// Normalizes, but leaves vectors that are already unit length (such as those writeScene wrote) exactly as they are.
-    static glm::vec3 unitLength(const glm::vec3& v) {
-        return std::abs(glm::dot(v, v) - 1.0f) <= 1e-6f ? v : glm::normalize(v);
-    }
-
-    glm::vec3 color(const Node& n) const {
-        const glm::vec3 c = vec3(n);
-        if (glm::any(glm::lessThan(c, glm::vec3(0.0f)))) fail(n.path, "color components must not be negative");
-        return c;
-    }
-
-    /// A color that is a fraction of light, such as an albedo: components in [0, 1].
-    glm::vec3 reflectance(const Node& n) const {
-        const glm::vec3 c = color(n);
-        if (glm::any(glm::greaterThan(c, glm::vec3(1.0f))))
-            fail(n.path, "a reflectance reflects at most all light: components must be in [0, 1]");
-        return c;
-    }
-
     // ---- camera, image, fog, render settings
 
     void readCamera(const Node& n) {
@@ -777,48 +529,72 @@ private:
         for (size_t i = 0; i < n.value.size(); ++i) readObject(n[i]);
     }
 
+    /// The object types, one row each: the type's name and its parse function. A new primitive adds
+    /// a row here and a geometry kind (geometry/geometry_registry.cpp).
+    using ObjectParser = void (SceneReader::*)(const Node&);
+    static std::span<const std::pair<const char*, ObjectParser>> objectTypes() {
+        static constexpr std::pair<const char*, ObjectParser> kTypes[] = {
+            {"mesh", &SceneReader::readMeshObject},           {"instance", &SceneReader::readInstanceObject},
+            {"generated", &SceneReader::readGeneratedObject}, {"triangles", &SceneReader::readTrianglesObject},
+            {"sphere", &SceneReader::readSphereObject},
+        };
+        return kTypes;
+    }
+
     void readObject(const Node& n) {
         expectObject(n);
         require(n, "type");
         const std::string type = string(n["type"]);
-        if (type == "mesh") {
-            checkKeys(n, {"type", "file", "material", "transform"});
-            require(n, "file");
-            const uint32_t mesh = loadMeshFile(n["file"], std::nullopt);
-            addInstance(mesh, n);
-        } else if (type == "instance") {
-            checkKeys(n, {"type", "mesh", "material", "transform"});
-            require(n, "mesh");
-            const Node name = n["mesh"];
-            auto it = meshNamed_.find(string(name));
-            if (it == meshNamed_.end()) {
-                std::vector<std::string> names;
-                for (const auto& [meshName, index] : meshNamed_) names.push_back(meshName);
-                fail(name.path, "unknown mesh \"" + string(name) + "\"" + suggestion(string(name), names));
-            }
-            addInstance(it->second, n);
-        } else if (type == "generated") {
-            require(n, "shape");
-            const std::string shape = shapeName(n["shape"]);
-            std::vector<std::string> keys = shapeKeys(shape);
-            keys.insert(keys.end(), {"type", "shape", "material", "transform"});
-            checkKeys(n, keys);
-            addOwnMesh(generateShape(shape, n), n);
-        } else if (type == "triangles") {
-            checkKeys(n, {"type", "vertices", "indices", "normals", "uvs", "material", "face_materials", "transform"});
-            if (n.has("material") && n.has("face_materials"))
-                fail(n.path, "\"material\" and \"face_materials\" cannot be combined");
-            addOwnMesh(inlineTriangles(n), n);
-        } else if (type == "sphere") {
-            checkKeys(n, {"type", "center", "radius", "material", "transform"});
-            require(n, "center");
-            require(n, "radius");
-            scene_.spheres.push_back(sphere(n));
-        } else {
-            const std::vector<std::string> types = {"mesh", "instance", "generated", "triangles", "sphere"};
-            const std::string hint = suggestion(type, types);
-            fail(n["type"].path, "unknown object type \"" + type + "\"" + (hint.empty() ? " (expected " + joined(types) + ")" : hint));
+        std::vector<std::string> types;
+        for (const auto& [name, parse] : objectTypes()) {
+            if (type == name) return (this->*parse)(n);
+            types.push_back(name);
         }
+        const std::string hint = suggestion(type, types);
+        fail(n["type"].path, "unknown object type \"" + type + "\"" + (hint.empty() ? " (expected " + joined(types) + ")" : hint));
+    }
+
+    void readMeshObject(const Node& n) {
+        checkKeys(n, {"type", "file", "material", "transform"});
+        require(n, "file");
+        const uint32_t mesh = loadMeshFile(n["file"], std::nullopt);
+        addInstance(mesh, n);
+    }
+
+    void readInstanceObject(const Node& n) {
+        checkKeys(n, {"type", "mesh", "material", "transform"});
+        require(n, "mesh");
+        const Node name = n["mesh"];
+        auto it = meshNamed_.find(string(name));
+        if (it == meshNamed_.end()) {
+            std::vector<std::string> names;
+            for (const auto& [meshName, index] : meshNamed_) names.push_back(meshName);
+            fail(name.path, "unknown mesh \"" + string(name) + "\"" + suggestion(string(name), names));
+        }
+        addInstance(it->second, n);
+    }
+
+    void readGeneratedObject(const Node& n) {
+        require(n, "shape");
+        const std::string shape = shapeName(n["shape"]);
+        std::vector<std::string> keys = shapeKeys(shape);
+        keys.insert(keys.end(), {"type", "shape", "material", "transform"});
+        checkKeys(n, keys);
+        addOwnMesh(generateShape(shape, n), n);
+    }
+
+    void readTrianglesObject(const Node& n) {
+        checkKeys(n, {"type", "vertices", "indices", "normals", "uvs", "material", "face_materials", "transform"});
+        if (n.has("material") && n.has("face_materials"))
+            fail(n.path, "\"material\" and \"face_materials\" cannot be combined");
+        addOwnMesh(inlineTriangles(n), n);
+    }
+
+    void readSphereObject(const Node& n) {
+        checkKeys(n, {"type", "center", "radius", "material", "transform"});
+        require(n, "center");
+        require(n, "radius");
+        scene_.spheres.push_back(sphere(n));
     }
 
     void addInstance(uint32_t mesh, const Node& n) {
@@ -851,7 +627,6 @@ private:
         return s;
     }
 
-    std::string file_;
     std::filesystem::path folder_;
     Scene scene_;
     std::unordered_map<std::string, uint32_t> materialIndex_;
@@ -860,87 +635,6 @@ private:
     std::set<std::string> materialPrefixes_;
     std::map<std::pair<std::filesystem::path, bool>, std::shared_ptr<const Image>> textureImages_;
 };
-
-// ---- writing
-
-Json array(const glm::vec3& v) { return Json::array({v.x, v.y, v.z}); }
-
-Json textureJson(const Texture& texture, bool scalar) {
-    const auto named = std::find_if(kTextureTypes.begin(), kTextureTypes.end(), [&](const auto& t) { return t.second == texture.type; });
-    Json j = {{"type", named->first}};
-    if (texture.type == TextureType::Image) {
-        j["file"] = texture.file.string();
-        return j;
-    }
-    if (scalar) j["values"] = Json::array({texture.color0.x, texture.color1.x});
-    else j["colors"] = Json::array({array(texture.color0), array(texture.color1)});
-    j["scale"] = texture.scale;
-    if (hasOctaves(texture.type)) j["octaves"] = texture.octaves;
-    return j;
-}
-
-Json materialJson(const Material& m) {
-    const Json color = m.colorTexture ? textureJson(*m.colorTexture, false) : array(m.color);
-    const Json roughness = m.roughnessTexture ? textureJson(*m.roughnessTexture, true) : Json(m.roughness);
-    switch (m.type) {
-    case MaterialType::Diffuse: return {{"type", "diffuse"}, {"color", color}};
-    case MaterialType::Plastic:
-        return {{"type", "plastic"}, {"color", color}, {"specular", m.specular}, {"shininess", m.shininess}};
-    case MaterialType::Mirror: return {{"type", "mirror"}, {"color", color}};
-    case MaterialType::Conductor:
-        return {{"type", "conductor"}, {"eta", array(m.eta)}, {"k", array(m.k)}, {"roughness", roughness},
-                {"samples", m.samples}};
-    case MaterialType::Dielectric:
-        return {{"type", "dielectric"}, {"ior", m.ior}, {"absorption", array(m.absorption)}, {"roughness", roughness},
-                {"samples", m.samples}};
-    }
-    throw std::invalid_argument("writeScene: unknown material type");
-}
-
-Json lightJson(const Light& light) {
-    Json j;
-    switch (light.type) {
-    case LightType::Point: j = {{"type", "point"}, {"position", array(light.position)}}; break;
-    case LightType::Directional: j = {{"type", "directional"}, {"direction", array(light.direction)}}; break;
-    case LightType::Quad:
-        j = {{"type", "quad"}, {"corner", array(light.position)}, {"edge_u", array(light.edgeU)},
-             {"edge_v", array(light.edgeV)}, {"samples", light.samples}};
-        break;
-    case LightType::Sphere:
-        j = {{"type", "sphere"}, {"center", array(light.position)}, {"radius", light.radius}, {"samples", light.samples}};
-        break;
-    }
-    j["color"] = array(light.color);
-    j["intensity"] = light.intensity;
-    return j;
-}
-
-Json meshJson(const TriangleMesh& mesh, const std::vector<Material>& materials) {
-    Json vertices = Json::array(), indices = Json::array();
-    for (const glm::vec3& p : mesh.positions) vertices.push_back(array(p));
-    for (const glm::uvec3& t : mesh.triangles) indices.push_back({t.x, t.y, t.z});
-    Json j = {{"vertices", std::move(vertices)}, {"indices", std::move(indices)}};
-    if (!mesh.normals.empty()) {
-        Json& normals = j["normals"] = Json::array();
-        for (const glm::vec3& n : mesh.normals) normals.push_back(array(n));
-    }
-    if (!mesh.uvs.empty()) {
-        Json& uvs = j["uvs"] = Json::array();
-        for (const glm::vec2& uv : mesh.uvs) uvs.push_back({uv.x, uv.y});
-    }
-    if (!mesh.faceMaterial.empty()) {
-        Json& faces = j["face_materials"] = Json::array();
-        for (uint32_t m : mesh.faceMaterial) faces.push_back(materials.at(m).name);
-    }
-    return j;
-}
-
-Json matrixJson(const glm::mat4& m) {
-    Json j = Json::array();
-    for (int row = 0; row < 4; ++row)
-        for (int column = 0; column < 4; ++column) j.push_back(m[column][row]);
-    return j;
-}
 
 } // namespace
 
@@ -955,43 +649,6 @@ Scene loadScene(const std::filesystem::path& file) {
     std::ostringstream text;
     text << in.rdbuf();
     return parseScene(text.str(), file);
-}
-
-std::string writeScene(const Scene& scene) {
-    std::set<std::string> names;
-    for (const Material& m : scene.materials)
-        if (m.name.empty() || !names.insert(m.name).second)
-            throw std::invalid_argument("writeScene: material names must be unique and non-empty (\"" + m.name + "\")");
-
-    const Camera& camera = scene.camera;
-    Json root;
-    root["camera"] = {{"position", array(camera.position)}, {"look_at", array(camera.lookAt)},
-                      {"up", array(camera.up)}, {"fov", camera.fovY}, {"aperture", camera.aperture},
-                      {"focus_distance", camera.focusDistance}};
-    root["image"] = {{"width", scene.image.width}, {"height", scene.image.height}, {"spp", scene.image.samplesPerPixel}};
-    root["background"] = array(scene.background);
-    root["fog"] = {{"density", scene.fog.density}, {"color", array(scene.fog.color)}};
-    root["render"] = {{"max_depth", scene.render.maxDepth}, {"min_throughput", scene.render.minThroughput},
-                      {"polarized", scene.render.polarized}};
-    Json& materials = root["materials"] = Json::object();
-    for (const Material& m : scene.materials) materials[m.name] = materialJson(m);
-    Json& lights = root["lights"] = Json::array();
-    for (const Light& light : scene.lights) lights.push_back(lightJson(light));
-    Json& meshes = root["meshes"] = Json::object();
-    for (size_t i = 0; i < scene.meshes.size(); ++i)
-        meshes["mesh" + std::to_string(i)] = meshJson(scene.meshes[i], scene.materials);
-
-    Json& objects = root["objects"] = Json::array();
-    for (const MeshInstance& instance : scene.instances) {
-        Json object = {{"type", "instance"}, {"mesh", "mesh" + std::to_string(instance.mesh)}};
-        if (instance.material != MeshInstance::kMeshMaterials) object["material"] = scene.materials.at(instance.material).name;
-        object["transform"] = {{"matrix", matrixJson(instance.transform)}};
-        objects.push_back(std::move(object));
-    }
-    for (const Sphere& s : scene.spheres)
-        objects.push_back({{"type", "sphere"}, {"center", array(s.center)}, {"radius", s.radius},
-                           {"material", scene.materials.at(s.material).name}});
-    return root.dump(2) + "\n";
 }
 
 } // namespace wideray

@@ -1,0 +1,22 @@
+#pragma once
+// The names the scene format gives to shapes, material types and texture types, shared by its reader
+// and its writer (docs/scene-format.md).
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/texture.h"
+
+namespace wideray {
+
+inline const std::vector<std::string> kShapes = {"cube", "icosphere", "torus", "quad"};
+inline const std::vector<std::string> kMaterialTypes = {"diffuse", "plastic", "mirror", "conductor", "dielectric"};
+inline const std::vector<std::pair<std::string, TextureType>> kTextureTypes = {
+    {"checker", TextureType::Checker}, {"noise", TextureType::Noise},   {"fbm", TextureType::Fbm},
+    {"turbulence", TextureType::Turbulence}, {"marble", TextureType::Marble}, {"image", TextureType::Image}};
+
+inline bool hasOctaves(TextureType type) {
+    return type == TextureType::Fbm || type == TextureType::Turbulence || type == TextureType::Marble;
+}
+
+} // namespace wideray

@@ -1,0 +1,130 @@
+// Scene -> JSON, which parseScene reads back into an equal scene.
+#include <set>
+#include <stdexcept>
+
+#include "io/json_document.h"
+#include "io/scene_parser.h"
+#include "io/scene_vocabulary.h"
+
+namespace wideray {
+namespace {
+
+Json array(const glm::vec3& v) { return Json::array({v.x, v.y, v.z}); }
+
+Json textureJson(const Texture& texture, bool scalar) {
+    const auto named = std::find_if(kTextureTypes.begin(), kTextureTypes.end(), [&](const auto& t) { return t.second == texture.type; });
+    Json j = {{"type", named->first}};
+    if (texture.type == TextureType::Image) {
+        j["file"] = texture.file.string();
+        return j;
+    }
+    if (scalar) j["values"] = Json::array({texture.color0.x, texture.color1.x});
+    else j["colors"] = Json::array({array(texture.color0), array(texture.color1)});
+    j["scale"] = texture.scale;
+    if (hasOctaves(texture.type)) j["octaves"] = texture.octaves;
+    return j;
+}
+
+Json materialJson(const Material& m) {
+    const Json color = m.colorTexture ? textureJson(*m.colorTexture, false) : array(m.color);
+    const Json roughness = m.roughnessTexture ? textureJson(*m.roughnessTexture, true) : Json(m.roughness);
+    switch (m.type) {
+    case MaterialType::Diffuse: return {{"type", "diffuse"}, {"color", color}};
+    case MaterialType::Plastic:
+        return {{"type", "plastic"}, {"color", color}, {"specular", m.specular}, {"shininess", m.shininess}};
+    case MaterialType::Mirror: return {{"type", "mirror"}, {"color", color}};
+    case MaterialType::Conductor:
+        return {{"type", "conductor"}, {"eta", array(m.eta)}, {"k", array(m.k)}, {"roughness", roughness},
+                {"samples", m.samples}};
+    case MaterialType::Dielectric:
+        return {{"type", "dielectric"}, {"ior", m.ior}, {"absorption", array(m.absorption)}, {"roughness", roughness},
+                {"samples", m.samples}};
+    }
+    throw std::invalid_argument("writeScene: unknown material type");
+}
+
+Json lightJson(const Light& light) {
+    Json j;
+    switch (light.type) {
+    case LightType::Point: j = {{"type", "point"}, {"position", array(light.position)}}; break;
+    case LightType::Directional: j = {{"type", "directional"}, {"direction", array(light.direction)}}; break;
+    case LightType::Quad:
+        j = {{"type", "quad"}, {"corner", array(light.position)}, {"edge_u", array(light.edgeU)},
+             {"edge_v", array(light.edgeV)}, {"samples", light.samples}};
+        break;
+    case LightType::Sphere:
+        j = {{"type", "sphere"}, {"center", array(light.position)}, {"radius", light.radius}, {"samples", light.samples}};
+        break;
+    }
+    j["color"] = array(light.color);
+    j["intensity"] = light.intensity;
+    return j;
+}
+
+Json meshJson(const TriangleMesh& mesh, const std::vector<Material>& materials) {
+    Json vertices = Json::array(), indices = Json::array();
+    for (const glm::vec3& p : mesh.positions) vertices.push_back(array(p));
+    for (const glm::uvec3& t : mesh.triangles) indices.push_back({t.x, t.y, t.z});
+    Json j = {{"vertices", std::move(vertices)}, {"indices", std::move(indices)}};
+    if (!mesh.normals.empty()) {
+        Json& normals = j["normals"] = Json::array();
+        for (const glm::vec3& n : mesh.normals) normals.push_back(array(n));
+    }
+    if (!mesh.uvs.empty()) {
+        Json& uvs = j["uvs"] = Json::array();
+        for (const glm::vec2& uv : mesh.uvs) uvs.push_back({uv.x, uv.y});
+    }
+    if (!mesh.faceMaterial.empty()) {
+        Json& faces = j["face_materials"] = Json::array();
+        for (uint32_t m : mesh.faceMaterial) faces.push_back(materials.at(m).name);
+    }
+    return j;
+}
+
+Json matrixJson(const glm::mat4& m) {
+    Json j = Json::array();
+    for (int row = 0; row < 4; ++row)
+        for (int column = 0; column < 4; ++column) j.push_back(m[column][row]);
+    return j;
+}
+
+} // namespace
+
+std::string writeScene(const Scene& scene) {
+    std::set<std::string> names;
+    for (const Material& m : scene.materials)
+        if (m.name.empty() || !names.insert(m.name).second)
+            throw std::invalid_argument("writeScene: material names must be unique and non-empty (\"" + m.name + "\")");
+
+    const Camera& camera = scene.camera;
+    Json root;
+    root["camera"] = {{"position", array(camera.position)}, {"look_at", array(camera.lookAt)},
+                      {"up", array(camera.up)}, {"fov", camera.fovY}, {"aperture", camera.aperture},
+                      {"focus_distance", camera.focusDistance}};
+    root["image"] = {{"width", scene.image.width}, {"height", scene.image.height}, {"spp", scene.image.samplesPerPixel}};
+    root["background"] = array(scene.background);
+    root["fog"] = {{"density", scene.fog.density}, {"color", array(scene.fog.color)}};
+    root["render"] = {{"max_depth", scene.render.maxDepth}, {"min_throughput", scene.render.minThroughput},
+                      {"polarized", scene.render.polarized}};
+    Json& materials = root["materials"] = Json::object();
+    for (const Material& m : scene.materials) materials[m.name] = materialJson(m);
+    Json& lights = root["lights"] = Json::array();
+    for (const Light& light : scene.lights) lights.push_back(lightJson(light));
+    Json& meshes = root["meshes"] = Json::object();
+    for (size_t i = 0; i < scene.meshes.size(); ++i)
+        meshes["mesh" + std::to_string(i)] = meshJson(scene.meshes[i], scene.materials);
+
+    Json& objects = root["objects"] = Json::array();
+    for (const MeshInstance& instance : scene.instances) {
+        Json object = {{"type", "instance"}, {"mesh", "mesh" + std::to_string(instance.mesh)}};
+        if (instance.material != MeshInstance::kMeshMaterials) object["material"] = scene.materials.at(instance.material).name;
+        object["transform"] = {{"matrix", matrixJson(instance.transform)}};
+        objects.push_back(std::move(object));
+    }
+    for (const Sphere& s : scene.spheres)
+        objects.push_back({{"type", "sphere"}, {"center", array(s.center)}, {"radius", s.radius},
+                           {"material", scene.materials.at(s.material).name}});
+    return root.dump(2) + "\n";
+}
+
+} // namespace wideray
