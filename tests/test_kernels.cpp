@@ -225,3 +225,26 @@ TEST(Kernels, CostsMeasureTheChosenKernel) {
 
 } // namespace
 } // namespace wideray
+
+namespace wideray {
+namespace {
+
+/// Every table has the same complete rows (the CLI lists the rows of one table as every kernel's).
+TEST(Kernels, RegistryRowsAreCompleteAndTheSameInEveryTable) {
+    const KernelTable<8> baseline = kernelTable<8>(Isa::Sse42);
+    EXPECT_STREQ(baseline.rows[0].name, "scalar");
+    for (Isa isa : availableIsas()) {
+        const KernelTable<8> table = kernelTable<8>(isa);
+        for (size_t i = 0; i < table.rows.size(); ++i) {
+            const Kernel<8>& k = table.rows[i];
+            EXPECT_GT(std::strlen(k.name), 0u) << isaName(isa) << " row " << i;
+            EXPECT_GT(std::strlen(k.description), 0u) << k.name;
+            EXPECT_STREQ(k.name, baseline.rows[i].name) << isaName(isa) << " row " << i;
+            EXPECT_EQ(k.available(), k.occluded != nullptr) << k.name;
+            EXPECT_EQ(k.available(), int(isa) >= int(k.minimumIsa)) << k.name << " " << isaName(isa);
+        }
+    }
+}
+
+} // namespace
+} // namespace wideray

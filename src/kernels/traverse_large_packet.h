@@ -68,36 +68,39 @@ inline void traceSubPackets(const SceneView<N>& scene, const Ray* rays, int coun
     }
 }
 
-/// Closest hits (or occlusion) of up to K * P rays, P sub-packets of K, and their costs where
-/// `costsOut` is given (an inner node tested for the packet counts for each of its unfinished rays).
-template <int N, int K, int P, bool AnyHit, class Leaves = SceneLeafIntersector>
-inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
-                             uint8_t* occludedOut, TraversalCost* costsOut = nullptr) {
-    using F = vfloat<K>;
-    const Leaves leaves{scene.leaves};
+/// The P sub-packets of K rays of a large packet, with their hits so far.
+template <int K, int P>
+struct LargePacket {
+    static_assert(P <= 64);
     PacketRay<K> packets[P];
     PacketHit<K> hits[P];
     PacketUserHits<K> users[P];
     PacketCost<K> costs[P];
     vbool<K> valid[P], done[P];
-    const int subCount = (count + K - 1) / K;
-    static_assert(P <= 64);
-    uint64_t anyValid = 0;  // sub-packets with rays still to trace
-    bool oneOctant = true;
-    for (int s = 0; s < subCount; ++s) {
-        valid[s] = loadPacket(rays + s * K, count - s * K < K ? count - s * K : K, packets[s], hits[s]);
-        users[s] = PacketUserHits<K>(rays + s * K);
-        costs[s].start(costsOut != nullptr);
-        done[s] = andNot(vbool<K>(true), valid[s]);
-        if (none(valid[s])) continue;
-        const PacketRay<K>& first = packets[__builtin_ctzll(anyValid | (uint64_t(1) << s))];
-        oneOctant = oneOctant && packets[s].uniformOctant && packets[s].negXs == first.negXs &&
-                    packets[s].negYs == first.negYs && packets[s].negZs == first.negZs;
-        anyValid |= uint64_t(1) << s;
-    }
-    if (!oneOctant || scene.root.isLeaf()) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
+    int subCount = 0;
+    uint64_t anyValid = 0;  ///< sub-packets with rays still to trace
 
-    if (anyValid) {
+    /// Loads up to K * P rays; returns whether all valid ones share one direction octant.
+    bool load(const Ray* rays, int count, bool countCost) {
+        subCount = (count + K - 1) / K;
+        bool oneOctant = true;
+        for (int s = 0; s < subCount; ++s) {
+            valid[s] = loadPacket(rays + s * K, count - s * K < K ? count - s * K : K, packets[s], hits[s]);
+            users[s] = PacketUserHits<K>(rays + s * K);
+            costs[s].start(countCost);
+            done[s] = andNot(vbool<K>(true), valid[s]);
+            if (none(valid[s])) continue;
+            const PacketRay<K>& first = packets[__builtin_ctzll(anyValid | (uint64_t(1) << s))];
+            oneOctant = oneOctant && packets[s].uniformOctant && packets[s].negXs == first.negXs &&
+                        packets[s].negYs == first.negYs && packets[s].negZs == first.negZs;
+            anyValid |= uint64_t(1) << s;
+        }
+        return oneOctant;
+    }
+
+    /// The bounds of the valid rays' origins and reciprocal directions (anyValid must not be 0).
+    RayInterval interval() const {
+        using F = vfloat<K>;
         RayInterval iv;
         const PacketRay<K>& first = packets[__builtin_ctzll(anyValid)];
         iv.neg[0] = first.negXs; iv.neg[1] = first.negYs; iv.neg[2] = first.negZs;
@@ -122,29 +125,61 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
             iv.rdLo[a] = reduceMin(rLo[a]); iv.rdHi[a] = -reduceMin(-rHi[a]);
         }
         iv.tnear = reduceMin(tn);
-        // Interval bounds are only tight for nearly parallel rays (a camera tile, shadow rays from
-        // neighbouring pixels): past about 6 degrees of spread, K-wide packets are faster.
-        float spread = 0.0f, extent = 0.0f;
-        for (int a = 0; a < 3; ++a) {
-            float dLo = 1.0f / iv.rdHi[a], dHi = 1.0f / iv.rdLo[a];
-            spread = max(spread, dHi - dLo);
-            extent = max(extent, max(abs(dLo), abs(dHi)));
+        return iv;
+    }
+
+    /// The farthest culling distance among the unfinished rays.
+    float tfarMax() const {
+        using F = vfloat<K>;
+        F m(-__builtin_huge_valf());
+        for (uint64_t bits = anyValid; bits; bits &= bits - 1) {
+            int s = __builtin_ctzll(bits);
+            m = max(select(done[s], F(-__builtin_huge_valf()), hits[s].t), m);
         }
-        if (!(spread <= 0.1f * extent)) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
+        return -reduceMin(-m);
+    }
+
+    void write(int count, Hit* hitsOut, uint8_t* occludedOut, TraversalCost* costsOut, bool anyHit) const {
+        for (int s = 0; s < subCount; ++s) {
+            const int n = count - s * K < K ? count - s * K : K;
+            PacketUserHits<K> user = users[s];
+            if (anyHit) writePacketResults<K, true>(hits[s], user, movemask(valid[s]), movemask(done[s]), n, nullptr, occludedOut + s * K);
+            else writePacketResults<K, false>(hits[s], user, movemask(valid[s]), 0, n, hitsOut + s * K, nullptr);
+            costs[s].write(n, costsOut ? costsOut + s * K : nullptr);
+        }
+    }
+};
+
+/// Interval bounds are only tight for nearly parallel rays (a camera tile, shadow rays from
+/// neighbouring pixels): past about 6 degrees of spread, K-wide packets are faster.
+inline bool narrowEnough(const RayInterval& iv) {
+    float spread = 0.0f, extent = 0.0f;
+    for (int a = 0; a < 3; ++a) {
+        float dLo = 1.0f / iv.rdHi[a], dHi = 1.0f / iv.rdLo[a];
+        spread = max(spread, dHi - dLo);
+        extent = max(extent, max(abs(dLo), abs(dHi)));
+    }
+    return spread <= 0.1f * extent;
+}
+
+/// Closest hits (or occlusion) of up to K * P rays, P sub-packets of K, and their costs where
+/// `costsOut` is given (an inner node tested for the packet counts for each of its unfinished rays).
+template <int N, int K, int P, bool AnyHit, class Leaves = SceneLeafIntersector>
+inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
+                             uint8_t* occludedOut, TraversalCost* costsOut = nullptr) {
+    using F = vfloat<K>;
+    const Leaves leaves{scene.leaves};
+    LargePacket<K, P> lp;
+    const bool oneOctant = lp.load(rays, count, costsOut != nullptr);
+    if (!oneOctant || scene.root.isLeaf())
+        return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
+    if (lp.anyValid) {
+        RayInterval iv = lp.interval();
+        if (!narrowEnough(iv)) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
         // Clamp infinite reciprocals (zero direction components) so that 0 * inf cannot appear.
         for (int a = 0; a < 3; ++a) {
             iv.rdLo[a] = max(iv.rdLo[a], -3.0e38f); iv.rdHi[a] = min(iv.rdHi[a], 3.0e38f);
         }
-
-        auto packetTfarMax = [&] {
-            F m(-__builtin_huge_valf());
-            for (uint64_t bits = anyValid; bits; bits &= bits - 1) {
-                int s = __builtin_ctzll(bits);
-                m = max(select(done[s], F(-__builtin_huge_valf()), hits[s].t), m);
-            }
-            return -reduceMin(-m);
-        };
-
         struct Entry {
             NodeRef ref;
             float distance;  ///< where the packet's interval enters the subtree's box
@@ -153,16 +188,16 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
         Entry stack[kStackSize<N>];
         int sp = 0;
         stack[sp++] = {scene.root, iv.tnear, {}};
-        float tfarMax = packetTfarMax();
+        float tfarMax = lp.tfarMax();
         while (sp > 0) {
             Entry e = stack[--sp];
             if (e.distance > tfarMax * kRobustFarScale) continue;
             if (!e.ref.isLeaf()) {
                 const WideNode<N>& node = scene.nodes[e.ref.index()];
                 if (costsOut)
-                    for (uint64_t bits = anyValid; bits; bits &= bits - 1) {
+                    for (uint64_t bits = lp.anyValid; bits; bits &= bits - 1) {
                         const int s = __builtin_ctzll(bits);
-                        costs[s].visit(movemask(andNot(valid[s], done[s])));
+                        lp.costs[s].visit(movemask(andNot(lp.valid[s], lp.done[s])));
                     }
                 alignas(64) float tEntry[N];
                 uint32_t mask = intersectChildrenInterval<N>(node, iv, tfarMax, tEntry);
@@ -177,30 +212,25 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
                 }
                 continue;
             }
-            for (uint64_t bits = anyValid; bits; bits &= bits - 1) {
+            for (uint64_t bits = lp.anyValid; bits; bits &= bits - 1) {
                 int s = __builtin_ctzll(bits);
-                vbool<K> active = andNot(valid[s], done[s]);
+                vbool<K> active = andNot(lp.valid[s], lp.done[s]);
                 const LeafBox& b = e.box;
                 active &= packetBoxEntry(b.lower[0], b.lower[1], b.lower[2], b.upper[0], b.upper[1], b.upper[2],
-                                         packets[s], hits[s].t, active) < F(__builtin_huge_valf());
+                                         lp.packets[s], lp.hits[s].t, active) < F(__builtin_huge_valf());
                 if (none(active)) continue;
-                const vbool<K> occluded = leaves.template packet<K, AnyHit>(e.ref, packets[s], active, hits[s], users[s], costs[s]);
+                const vbool<K> occluded =
+                    leaves.template packet<K, AnyHit>(e.ref, lp.packets[s], active, lp.hits[s], lp.users[s], lp.costs[s]);
                 if constexpr (AnyHit) {
-                    done[s] |= occluded;
-                    if (all(done[s])) anyValid &= ~(uint64_t(1) << s);
+                    lp.done[s] |= occluded;
+                    if (all(lp.done[s])) lp.anyValid &= ~(uint64_t(1) << s);
                 }
             }
-            if (AnyHit && !anyValid) break;
-            tfarMax = packetTfarMax();
+            if (AnyHit && !lp.anyValid) break;
+            tfarMax = lp.tfarMax();
         }
     }
-
-    for (int s = 0; s < subCount; ++s) {
-        const int n = count - s * K < K ? count - s * K : K;
-        writePacketResults<K, AnyHit>(hits[s], users[s], movemask(valid[s]), movemask(done[s]), n,
-                                      AnyHit ? nullptr : hitsOut + s * K, AnyHit ? occludedOut + s * K : nullptr);
-        costs[s].write(n, costsOut ? costsOut + s * K : nullptr);
-    }
+    lp.write(count, hitsOut, occludedOut, costsOut, AnyHit);
 }
 
 } // namespace WIDERAY_ISA
