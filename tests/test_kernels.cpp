@@ -217,8 +217,11 @@ TEST(Kernels, CostsMeasureTheChosenKernel) {
             EXPECT_EQ(changed, 0u) << kernel.name << " " << isaName(isa);
             EXPECT_EQ(uncounted, 0u) << kernel.name << " " << isaName(isa) << ": hits without counted tests";
             const std::string name = kernel.name;
-            if (name == "scalar") EXPECT_EQ(total(costs), total(singleCosts)) << "same order, same work";
-            else if (name != "single") EXPECT_NE(total(costs), total(singleCosts)) << name << " " << isaName(isa);
+            if (name == "scalar") {
+                EXPECT_EQ(total(costs), total(singleCosts)) << "same order, same work";
+            } else if (name != "single") {
+                EXPECT_NE(total(costs), total(singleCosts)) << name << " " << isaName(isa);
+            }
         }
     }
 }

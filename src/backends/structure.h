@@ -15,6 +15,10 @@ namespace wideray {
 /// The kernels a tracer runs: a kernel of the structure's backend by name, or "auto" for the
 /// backend's own choice per kind of ray.
 struct KernelChoice {
+    KernelChoice() = default;
+    KernelChoice(std::string name, std::optional<Isa> chosenIsa = std::nullopt, bool cache = false)
+        : kernel(std::move(name)), isa(chosenIsa), shadowCache(cache) {}
+
     std::string kernel = "auto";
     std::optional<Isa> isa;    ///< our kernels: nullopt is the best this CPU has
     bool shadowCache = false;  ///< our kernels: last-occluder cache for incoherent shadow rays
@@ -26,7 +30,6 @@ public:
     virtual ~Structure() = default;
 
     const SceneGeometry& geometry() const { return *geometry_; }
-    const std::shared_ptr<const SceneGeometry>& sharedGeometry() const { return geometry_; }
 
     /// What the build is called in reports ("BVH8", "Embree BVH").
     virtual std::string name() const = 0;

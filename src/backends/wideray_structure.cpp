@@ -7,6 +7,18 @@
 #include "core/error.h"
 
 namespace wideray {
+namespace {
+
+/// The ISA a choice asks for, checked against this CPU; throws InputError.
+Isa chosenIsa(const KernelChoice& choice) {
+    const Isa isa = choice.isa.value_or(bestIsa());
+    if (!cpuSupports(isa))
+        throw InputError("--isa", "", std::string("this CPU cannot run ") + isaName(isa) + " code (it has up to " +
+                                          isaName(bestIsa()) + ")");
+    return isa;
+}
+
+} // namespace
 
 template <int N>
 WideBvhStructure<N>::WideBvhStructure(std::shared_ptr<const SceneGeometry> geometry)
@@ -22,14 +34,6 @@ std::string WideBvhStructure<N>::summary() const {
                        "{:.1f} bytes/triangle, build {:.1f} ms (binned SAH {:.1f} ms + collapse {:.1f} ms)",
                        N, s.innerNodes, s.leaves, s.leafItems, kBlockSize, s.depth, s.sahCost, bytesPerTriangle,
                        t.totalSeconds() * 1e3, t.binarySeconds * 1e3, t.collapseSeconds * 1e3);
-}
-
-Isa chosenIsa(const KernelChoice& choice) {
-    const Isa isa = choice.isa.value_or(bestIsa());
-    if (!cpuSupports(isa))
-        throw InputError("--isa", "", std::string("this CPU cannot run ") + isaName(isa) + " code (it has up to " +
-                                          isaName(bestIsa()) + ")");
-    return isa;
 }
 
 template <int N>

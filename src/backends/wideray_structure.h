@@ -31,7 +31,4 @@ private:
 std::shared_ptr<const Structure> buildWideBvh(std::shared_ptr<const SceneGeometry> geometry,
                                               const StructureOptions& options);
 
-/// The ISA a choice asks for, checked against this CPU; throws InputError.
-Isa chosenIsa(const KernelChoice& choice);
-
 } // namespace wideray

@@ -113,6 +113,12 @@ void renderOne(const RenderArgs& args, const std::string& sceneFile) {
     std::fflush(stdout);
 }
 
+std::vector<std::string> backendNames() {
+    std::vector<std::string> names;
+    for (const Backend& b : backends()) names.push_back(b.name);
+    return names;
+}
+
 } // namespace
 
 void addRenderCommand(CLI::App& app, int& exitCode) {
@@ -128,13 +134,13 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--spp", args->spp, "Samples per pixel, overriding the scene's")->check(CLI::Range(1, 1 << 16));
     cmd->add_option("--aov", args->aov,
                     "What to write: color, normal (n * 0.5 + 0.5), depth (hit distance; scaled to [0,1] in "
-                    "8-bit formats) or cost (heatmap of BVH nodes + primitives visited per pixel)")
+                    "8-bit formats) or cost (heatmap of BVH nodes + primitives the chosen kernel visited per pixel)")
         ->check(CLI::IsMember({"color", "normal", "depth", "cost"}))
         ->capture_default_str();
     cmd->add_option("--backend", args->backend,
                     "Who traces the rays: wideray (our kernels) or embree (Intel Embree, with its default BVH "
                     "and its widest native packets; --kernel, --isa and --bvh-width do not apply)")
-        ->check(CLI::IsMember({"wideray", "embree"}))
+        ->check(CLI::IsMember(backendNames()))
         ->capture_default_str();
     cmd->add_flag("--compare-backends", args->compareBackends,
                   "Also render through the other backend and print pixel difference statistics");
