@@ -138,33 +138,33 @@ struct PacketUserHits {
     uint32_t& primId(int lane) { return primIds[lane]; }
 };
 
-/// The traversal work of each lane of a packet (the cost AOV), counted only when asked for: box tests
-/// of inner nodes the lane's subtree reached while it was active, and primitive tests.
-template <int K>
+/// The traversal work of each lane of a packet (the cost AOV): box tests of inner nodes the lane's
+/// subtree reached while it was active, and primitive tests. Without `Counting` it is empty and
+/// costs nothing.
+template <int K, bool Counting>
 struct PacketCost {
-    bool counting = false;
-    uint32_t nodes[K], primitives[K];
+    uint32_t nodes[Counting ? K : 1], primitives[Counting ? K : 1];
 
-    void start(bool count) {
-        counting = count;
-        if (count)
+    PacketCost() {
+        if constexpr (Counting)
             for (int i = 0; i < K; ++i) nodes[i] = primitives[i] = 0;
     }
     void visit(uint32_t lanes) {
-        if (counting)
+        if constexpr (Counting)
             for (; lanes; lanes &= lanes - 1) ++nodes[__builtin_ctz(lanes)];
     }
     void test(uint32_t lanes, uint32_t count) {
-        if (counting)
+        if constexpr (Counting)
             for (; lanes; lanes &= lanes - 1) primitives[__builtin_ctz(lanes)] += count;
     }
     void add(int lane, const TraversalCost& c) {
-        if (!counting) return;
-        nodes[lane] += c.nodes;
-        primitives[lane] += c.primitives;
+        if constexpr (Counting) {
+            nodes[lane] += c.nodes;
+            primitives[lane] += c.primitives;
+        }
     }
     void write(int count, TraversalCost* out) const {
-        if (counting && out)
+        if constexpr (Counting)
             for (int i = 0; i < count; ++i) out[i] = {nodes[i], primitives[i]};
     }
 };

@@ -69,26 +69,25 @@ inline void traceSubPackets(const SceneView<N>& scene, const Ray* rays, int coun
 }
 
 /// The P sub-packets of K rays of a large packet, with their hits so far.
-template <int K, int P>
+template <int K, int P, bool Counting>
 struct LargePacket {
     static_assert(P <= 64);
     PacketRay<K> packets[P];
     PacketHit<K> hits[P];
     PacketUserHits<K> users[P];
-    PacketCost<K> costs[P];
+    PacketCost<K, Counting> costs[P];
     vbool<K> valid[P], done[P];
     int subCount = 0;
     uint64_t anyValid = 0;  ///< sub-packets with rays still to trace
 
     /// Loads up to K * P rays; returns whether all valid ones share one direction octant.
-    bool load(const Ray* rays, int count, bool countCost) {
+    bool load(const Ray* rays, int count) {
         subCount = (count + K - 1) / K;
         bool oneOctant = true;
         for (int s = 0; s < subCount; ++s) {
             valid[s] = loadPacket(rays + s * K, count - s * K < K ? count - s * K : K, packets[s], hits[s]);
             users[s] = PacketUserHits<K>(rays + s * K);
-            costs[s].start(countCost);
-            done[s] = andNot(vbool<K>(true), valid[s]);
+                done[s] = andNot(vbool<K>(true), valid[s]);
             if (none(valid[s])) continue;
             const PacketRay<K>& first = packets[__builtin_ctzll(anyValid | (uint64_t(1) << s))];
             oneOctant = oneOctant && packets[s].uniformOctant && packets[s].negXs == first.negXs &&
@@ -162,15 +161,15 @@ inline bool narrowEnough(const RayInterval& iv) {
     return spread <= 0.1f * extent;
 }
 
-/// Closest hits (or occlusion) of up to K * P rays, P sub-packets of K, and their costs where
-/// `costsOut` is given (an inner node tested for the packet counts for each of its unfinished rays).
-template <int N, int K, int P, bool AnyHit, class Leaves = SceneLeafIntersector>
-inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
-                             uint8_t* occludedOut, TraversalCost* costsOut = nullptr) {
+/// Closest hits (or occlusion) of up to K * P rays, P sub-packets of K, and their costs with
+/// `Counting` (an inner node tested for the packet counts for each of its unfinished rays).
+template <int N, int K, int P, bool AnyHit, bool Counting, class Leaves>
+inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
+                                    uint8_t* occludedOut, TraversalCost* costsOut) {
     using F = vfloat<K>;
     const Leaves leaves{scene.leaves};
-    LargePacket<K, P> lp;
-    const bool oneOctant = lp.load(rays, count, costsOut != nullptr);
+    LargePacket<K, P, Counting> lp;
+    const bool oneOctant = lp.load(rays, count);
     if (!oneOctant || scene.root.isLeaf())
         return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
     if (lp.anyValid) {
@@ -194,7 +193,7 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
             if (e.distance > tfarMax * kRobustFarScale) continue;
             if (!e.ref.isLeaf()) {
                 const WideNode<N>& node = scene.nodes[e.ref.index()];
-                if (costsOut)
+                if constexpr (Counting)
                     for (uint64_t bits = lp.anyValid; bits; bits &= bits - 1) {
                         const int s = __builtin_ctzll(bits);
                         lp.costs[s].visit(movemask(andNot(lp.valid[s], lp.done[s])));
@@ -231,6 +230,17 @@ inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int cou
         }
     }
     lp.write(count, hitsOut, occludedOut, costsOut, AnyHit);
+}
+
+/// Closest hits (or occlusion) of up to K * P rays, and their costs where `costsOut` is given.
+template <int N, int K, int P, bool AnyHit, class Leaves = SceneLeafIntersector>
+inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
+                             uint8_t* occludedOut, TraversalCost* costsOut = nullptr) {
+    if constexpr (!AnyHit)  // occlusion queries report no costs
+        if (costsOut)
+            return traceLargePacketCounted<N, K, P, AnyHit, true, Leaves>(scene, rays, count, hitsOut, occludedOut,
+                                                                          costsOut);
+    traceLargePacketCounted<N, K, P, AnyHit, false, Leaves>(scene, rays, count, hitsOut, occludedOut, nullptr);
 }
 
 } // namespace WIDERAY_ISA

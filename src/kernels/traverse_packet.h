@@ -60,19 +60,18 @@ inline void writePacketResults(const PacketHit<K>& h, UserHits& user, uint32_t v
     }
 }
 
-/// Closest hits (or occlusion) of up to K rays, and their costs where `costsOut` is given. At most
-/// K / 4 active rays finish a subtree one by one.
-template <int N, int K, bool AnyHit, class Leaves = SceneLeafIntersector>
-inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut,
-                        TraversalCost* costsOut = nullptr) {
+/// Closest hits (or occlusion) of up to K rays, and their costs with `Counting`. At most K / 4
+/// active rays finish a subtree one by one.
+template <int N, int K, bool AnyHit, bool Counting, class Leaves>
+inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
+                               uint8_t* occludedOut, TraversalCost* costsOut) {
     using F = vfloat<K>;
     constexpr int switchToSingle = K / 4;
     const Leaves leaves{scene.leaves};
     PacketRay<K> p;
     PacketHit<K> h;
     PacketUserHits<K> user(rays);
-    PacketCost<K> cost;
-    cost.start(costsOut != nullptr);
+    PacketCost<K, Counting> cost;
     const vbool<K> valid = loadPacket(rays, count, p, h);
     vbool<K> done = andNot(vbool<K>(true), valid);  // any-hit: lanes whose answer is known
     const F inf(__builtin_huge_valf());
@@ -145,6 +144,15 @@ inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, H
     writePacketResults<K, AnyHit>(h, user, movemask(valid), movemask(h.t == F(-__builtin_huge_valf())), count,
                                   hitsOut, occludedOut);
     cost.write(count, costsOut);
+}
+
+/// Closest hits (or occlusion) of up to K rays, and their costs where `costsOut` is given.
+template <int N, int K, bool AnyHit, class Leaves = SceneLeafIntersector>
+inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut,
+                        TraversalCost* costsOut = nullptr) {
+    if constexpr (!AnyHit)  // occlusion queries report no costs
+        if (costsOut) return tracePacketCounted<N, K, AnyHit, true, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
+    tracePacketCounted<N, K, AnyHit, false, Leaves>(scene, rays, count, hitsOut, occludedOut, nullptr);
 }
 
 } // namespace WIDERAY_ISA
