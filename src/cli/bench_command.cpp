@@ -43,6 +43,7 @@ using TraceFn = std::function<void(const Ray* rays, size_t count, Hit* hits, uin
 
 struct Candidate {
     std::string backend, kernel, isa;
+    std::string quality;      ///< the build it traces: ours "fast"; Embree's "medium" or "high"
     std::string counterpart;  ///< the Embree kernel ours is compared with
     TraceFn trace;
 };
@@ -91,10 +92,10 @@ std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, bool allIsas) {
                 if (h) k.intersect(view, r, h, n, nullptr);
                 else k.occluded(view, r, o, n);
             };
-            out.push_back({"wideray", k.name, reference ? "baseline" : isaName(isa), k.embreeCounterpart, trace});
+            out.push_back({"wideray", k.name, reference ? "baseline" : isaName(isa), "fast", k.embreeCounterpart, trace});
             // The shadow cache: one per task, so that each chunk of rays starts cold (as a renderer tile would).
             if (k.occludedCached)
-                out.push_back({"wideray", std::string(k.name) + "+cache", isaName(isa), k.embreeCounterpart,
+                out.push_back({"wideray", std::string(k.name) + "+cache", isaName(isa), "fast", k.embreeCounterpart,
                                [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
                                    if (h) return;
                                    ShadowCache cache;
@@ -106,13 +107,13 @@ std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, bool allIsas) {
 }
 
 /// Each of Embree's entry points this CPU runs natively, over one Embree structure.
-std::vector<Candidate> embreeCandidates(const Structure& embree) {
+std::vector<Candidate> embreeCandidates(const Structure& embree, const std::string& quality) {
     std::vector<Candidate> out;
     for (EmbreeKernel kernel : {EmbreeKernel::Intersect1, EmbreeKernel::Packet4, EmbreeKernel::Packet8,
                                 EmbreeKernel::Packet16, EmbreeKernel::Stream1M}) {
         if (!embreeSupports(kernel)) continue;
         std::shared_ptr<const Tracer> tracer = embree.tracer({embreeKernelName(kernel)});
-        out.push_back({"embree", embreeKernelName(kernel), "embree", "",
+        out.push_back({"embree", embreeKernelName(kernel), "embree", quality, "",
                        [tracer](const Ray* r, size_t n, Hit* h, uint8_t* o, bool coherent) {
                            Coherence c = coherent ? Coherence::Coherent : Coherence::Incoherent;
                            if (h) tracer->intersect({r, n}, {h, n}, c);
@@ -122,6 +123,8 @@ std::vector<Candidate> embreeCandidates(const Structure& embree) {
     return out;
 }
 
+bool isSceneFile(const std::string& path) { return std::filesystem::path(path).extension() == ".json"; }
+
 std::string shortName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
 void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& results, nlohmann::json& builds,
@@ -130,21 +133,22 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
     Scene scene = loadSceneOrMesh(input, width, height);
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     const std::string name = shortName(input);
+    // A scene file is seen from its own camera (an interior view, say); a bare mesh is framed from outside.
+    const std::string workload = isSceneFile(input) ? "scene" : "framed";
     fmt::print(stderr, "{}: {} triangles, building BVHs...\n", name, geometry->triangleCount());
 
     // Each structure is built once: ours, and Embree at medium and high quality.
     // Our kernels are called directly on the BVH's view (the shadow-cache candidate needs a cache per task).
     auto ours = std::static_pointer_cast<const WideBvhStructure<8>>(findBackend("wideray").build(geometry, StructureOptions{}));
-    builds.push_back({{"scene", name}, {"backend", "wideray"}, {"quality", "sah-binned-bvh8"},
+    builds.push_back({{"scene", name}, {"backend", "wideray"}, {"quality", "fast"}, {"layout", ours->name()},
                       {"seconds", ours->buildSeconds()}, {"bytes", ours->bytes()}});
-    std::shared_ptr<const Structure> embreeMedium;
+    std::vector<std::pair<std::string, std::shared_ptr<const Structure>>> embree;
     for (const char* quality : {"medium", "high"}) {
         StructureOptions options;
         options.quality = quality;
-        std::shared_ptr<const Structure> e = findBackend("embree").build(geometry, options);
+        embree.emplace_back(quality, findBackend("embree").build(geometry, options));
         builds.push_back({{"scene", name}, {"backend", "embree"}, {"quality", quality},
-                          {"seconds", e->buildSeconds()}, {"bytes", e->bytes()}});
-        if (std::string_view(quality) == "medium") embreeMedium = e;
+                          {"seconds", embree.back().second->buildSeconds()}, {"bytes", embree.back().second->bytes()}});
     }
     for (const auto& b : builds)
         if (b["scene"] == name)
@@ -153,42 +157,44 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
 
     BenchRays rays = makeBenchRays(scene, *ours->tracer({"scalar"}), width, height);
 
-    // Embree's kernels are measured on its default build quality.
+    // Embree's kernels are measured on both of its builds; ours are compared with the faster.
     std::vector<Candidate> candidates;
     if (args.backend != "embree") candidates = ourCandidates(ours->accel(), args.allIsas);
     if (args.backend != "wideray")
-        for (Candidate& c : embreeCandidates(*embreeMedium)) candidates.push_back(std::move(c));
+        for (const auto& [quality, structure] : embree)
+            for (Candidate& c : embreeCandidates(*structure, quality)) candidates.push_back(std::move(c));
 
-    fmt::print("\n{:<28} {:<8} {:<8} {:<15} {:<8} {:>10} {:>9} {:>10}\n", "scene", "rays", "backend", "kernel", "isa",
-               "Mrays/s", "hits", "vs embree");
+    fmt::print("\n{:<28} {:<8} {:<8} {:<15} {:<8} {:<7} {:>10} {:>9} {:>10}\n", "scene", "rays", "backend", "kernel",
+               "isa", "build", "Mrays/s", "hits", "vs embree's faster build");
     for (const std::string& kindName : args.kinds) {
         RayKind kind = kindName == "primary" ? RayKind::Primary : kindName == "shadow" ? RayKind::Shadow : RayKind::Diffuse;
         const std::vector<Ray>& set = rays.of(kind);
         if (set.empty()) continue;
         bool anyHit = kind == RayKind::Shadow, coherent = kind != RayKind::Diffuse;
-        std::map<std::string, double> embreeSpeed;
+        std::map<std::string, std::pair<double, std::string>> embreeBest;  // kernel -> (Mrays/s, quality)
         std::vector<std::pair<const Candidate*, Measurement>> measured;
         for (const Candidate& c : candidates) {
             if (!anyHit && c.kernel == "single+cache") continue;  // the cache is for shadow rays only
             fmt::print(stderr, "\r{} {} {} {}...            ", name, kindName, c.kernel, c.isa);
             Measurement m = measure(c, set, anyHit, coherent, args.runs);
-            if (c.backend == "embree") embreeSpeed[c.kernel] = m.mraysPerSecond;
+            if (c.backend == "embree" && m.mraysPerSecond > embreeBest[c.kernel].first)
+                embreeBest[c.kernel] = {m.mraysPerSecond, c.quality};
             measured.push_back({&c, m});
         }
         fmt::print(stderr, "\r{:60}\r", "");
         for (const auto& [c, m] : measured) {
             std::string kernel = anyHit && c->backend == "embree" ? std::string(c->kernel).replace(3, 9, "Occluded") : c->kernel;
             std::string versus;
-            if (auto it = embreeSpeed.find(c->counterpart); it != embreeSpeed.end() && it->second > 0) {
+            if (auto it = embreeBest.find(c->counterpart); it != embreeBest.end() && it->second.first > 0) {
                 std::string counterpart = anyHit ? std::string(c->counterpart).replace(3, 9, "Occluded") : c->counterpart;
-                versus = fmt::format("{:.2f}x {}", m.mraysPerSecond / it->second, counterpart);
+                versus = fmt::format("{:.2f}x {} ({})", m.mraysPerSecond / it->second.first, counterpart, it->second.second);
             }
-            fmt::print("{:<28} {:<8} {:<8} {:<15} {:<8} {:>10.2f} {:>9} {}\n", name, kindName, c->backend, kernel,
-                       c->isa, m.mraysPerSecond, m.hits, versus);
+            fmt::print("{:<28} {:<8} {:<8} {:<15} {:<8} {:<7} {:>10.2f} {:>9} {}\n", name, kindName, c->backend, kernel,
+                       c->isa, c->quality, m.mraysPerSecond, m.hits, versus);
             results.push_back({{"scene", name}, {"triangles", geometry->triangleCount()}, {"ray_kind", kindName},
-                               {"backend", c->backend}, {"kernel", kernel}, {"isa", c->isa}, {"threads", threads},
-                               {"rays", set.size()}, {"hits", m.hits}, {"mrays_per_s", m.mraysPerSecond},
-                               {"runs", args.runs}});
+                               {"backend", c->backend}, {"kernel", kernel}, {"isa", c->isa}, {"quality", c->quality},
+                               {"workload", workload}, {"threads", threads}, {"rays", set.size()}, {"hits", m.hits},
+                               {"mrays_per_s", m.mraysPerSecond}, {"runs", args.runs}});
         }
         std::fflush(stdout);
     }
