@@ -2,6 +2,8 @@
 // box above it, and the SAH build beats a median split.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <cstring>
 #include <functional>
 
@@ -31,8 +33,10 @@ Bounds3f triangleBox(const TriangleMesh& mesh, uint32_t prim) {
 }
 
 template <int N>
-void checkWide(const TriangleMesh& mesh) {
-    SceneAccel<N> accel(std::make_shared<SceneGeometry>(mesh));
+void checkWide(const TriangleMesh& mesh, CollapseMethod collapse = CollapseMethod::Sah) {
+    BvhBuildConfig config = SceneAccel<N>::defaultConfig();
+    config.collapse = collapse;
+    SceneAccel<N> accel(std::make_shared<SceneGeometry>(mesh), config);
     const WideBvh<N>& bvh = accel.bvh();
     const auto& blocks = accel.blocks();
     std::vector<int> seen(mesh.triangles.size(), 0);
@@ -82,8 +86,42 @@ void checkWide(const TriangleMesh& mesh) {
 
 TEST(Bvh, WideCollapseKeepsEveryTriangleOnceInsideItsBoxes) {
     TriangleMesh mesh = testMesh();
-    checkWide<4>(mesh);
-    checkWide<8>(mesh);
+    for (CollapseMethod collapse : {CollapseMethod::Sah, CollapseMethod::Greedy}) {
+        checkWide<4>(mesh, collapse);
+        checkWide<8>(mesh, collapse);
+    }
+}
+
+template <int N>
+BvhStats wideStats(const TriangleMesh& mesh, CollapseMethod collapse) {
+    BvhBuildConfig config = SceneAccel<N>::defaultConfig();
+    config.collapse = collapse;
+    SceneAccel<N> accel(std::make_shared<SceneGeometry>(mesh), config);
+    return wideBvhStats(accel.bvh(), config);
+}
+
+/// The cost-driven collapse is the optimum over the same binary tree, so it never costs more than the
+/// greedy one; it also fills the nodes more.
+template <int N>
+void expectSahCollapseAtMostGreedy(const TriangleMesh& mesh, const std::string& name) {
+    const BvhStats sah = wideStats<N>(mesh, CollapseMethod::Sah), greedy = wideStats<N>(mesh, CollapseMethod::Greedy);
+    EXPECT_LE(sah.sahCost, greedy.sahCost * (1.0 + 1e-6)) << name << " N=" << N;
+    EXPECT_GE(sah.childrenPerNode(), greedy.childrenPerNode()) << name << " N=" << N;
+    std::printf("  %-40s BVH%d SAH cost %.3f (greedy %.3f), %.2f children per node (greedy %.2f)\n", name.c_str(), N,
+                sah.sahCost, greedy.sahCost, sah.childrenPerNode(), greedy.childrenPerNode());
+}
+
+TEST(Bvh, SahCollapseCostsAtMostTheGreedyOne) {
+    expectSahCollapseAtMostGreedy<4>(testMesh(), "test mesh");
+    expectSahCollapseAtMostGreedy<8>(testMesh(), "test mesh");
+    expectSahCollapseAtMostGreedy<8>(makeTorus(1.0f, 0.3f, 200, 100), "torus");
+    auto dir = sharedScenesDir();
+    if (!dir) GTEST_SKIP() << "the shared meshes need ../shared/scenes (or WIDERAY_SCENES)";
+    for (const char* file : kSharedMeshes) {
+        const TriangleMesh mesh = loadMesh(*dir / file);
+        expectSahCollapseAtMostGreedy<4>(mesh, file);
+        expectSahCollapseAtMostGreedy<8>(mesh, file);
+    }
 }
 
 TEST(Bvh, SingleTriangleAndTinyMeshes) {

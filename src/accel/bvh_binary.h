@@ -24,8 +24,13 @@ struct BinaryBvh {
 
 enum class SplitMethod { Sah, Median };
 
+/// How the binary tree becomes a wide one: the SAH-optimal collapse (dynamic programming), or greedily
+/// opening the largest child until a node has N.
+enum class CollapseMethod { Sah, Greedy };
+
 struct BvhBuildConfig {
     SplitMethod split = SplitMethod::Sah;
+    CollapseMethod collapse = CollapseMethod::Sah;
     int binCount = 32;
     int maxLeafSize = 8;
     /// Leaves are intersected in blocks of this many primitives, so the SAH charges whole blocks.

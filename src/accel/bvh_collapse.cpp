@@ -7,9 +7,33 @@ namespace wideray {
 namespace {
 
 template <int N>
-class Collapser {
+WideNode<N> emptyNode() {
+    WideNode<N> node;
+    constexpr float inf = std::numeric_limits<float>::infinity();
+    for (int i = 0; i < N; ++i) {
+        node.lowerX[i] = node.lowerY[i] = node.lowerZ[i] = inf;
+        node.upperX[i] = node.upperY[i] = node.upperZ[i] = -inf;
+        node.child[i] = NodeRef::empty();
+    }
+    return node;
+}
+
+template <int N>
+void setChildBounds(WideNode<N>& node, int i, const Bounds3f& b) {
+    node.lowerX[i] = b.lower.x;
+    node.lowerY[i] = b.lower.y;
+    node.lowerZ[i] = b.lower.z;
+    node.upperX[i] = b.upper.x;
+    node.upperY[i] = b.upper.y;
+    node.upperZ[i] = b.upper.z;
+}
+
+/// The greedy collapse: each wide node takes the binary node's children and keeps opening the one
+/// with the largest surface area until it has N.
+template <int N>
+class GreedyCollapser {
 public:
-    Collapser(const BinaryBvh& binary, const LeafEmitter& emitLeaf, WideBvh<N>& out)
+    GreedyCollapser(const BinaryBvh& binary, const LeafEmitter& emitLeaf, WideBvh<N>& out)
         : binary_(binary), emitLeaf_(emitLeaf), out_(out) {}
 
     void run() {
@@ -60,23 +84,12 @@ private:
         uint32_t nextInner = uint32_t(out_.nodes.size());
         out_.nodes.resize(out_.nodes.size() + innerCount);
 
-        WideNode<N> node;
-        constexpr float inf = std::numeric_limits<float>::infinity();
-        for (int i = 0; i < N; ++i) {
-            node.lowerX[i] = node.lowerY[i] = node.lowerZ[i] = inf;
-            node.upperX[i] = node.upperY[i] = node.upperZ[i] = -inf;
-            node.child[i] = NodeRef::empty();
-        }
+        WideNode<N> node = emptyNode<N>();
         uint32_t pending[N];
         int pendingCount = 0;
         for (int i = 0; i < childCount; ++i) {
             const BinaryNode& c = binary_.nodes[children[i]];
-            node.lowerX[i] = c.bounds.lower.x;
-            node.lowerY[i] = c.bounds.lower.y;
-            node.lowerZ[i] = c.bounds.lower.z;
-            node.upperX[i] = c.bounds.upper.x;
-            node.upperY[i] = c.bounds.upper.y;
-            node.upperZ[i] = c.bounds.upper.z;
+            setChildBounds(node, i, c.bounds);
             if (c.isLeaf()) {
                 node.child[i] = makeLeaf(c);
             } else {
@@ -93,17 +106,159 @@ private:
     WideBvh<N>& out_;
 };
 
+/// The collapse that minimizes the SAH cost of the wide tree (Ylitie, Karras and Laine 2017, "Efficient
+/// Incoherent Ray Traversal on GPUs Through Compressed Wide BVHs", section 4): dynamic programming over
+/// the binary tree decides, for every binary node, whether it becomes a leaf (its whole subtree's
+/// primitives re-packed into blocks), a wide node, or is dissolved so that its children take slots of
+/// the wide node above.
+template <int N>
+class SahCollapser {
+public:
+    SahCollapser(const BinaryBvh& binary, const LeafEmitter& emitLeaf, const BvhBuildConfig& config, WideBvh<N>& out)
+        : binary_(binary), emitLeaf_(emitLeaf), config_(config), out_(out), nodes_(binary.nodes.size()) {}
+
+    void run() {
+        solve();
+        const BinaryNode& root = binary_.nodes[0];
+        out_.bounds = root.bounds;
+        if (root.isLeaf() || nodes_[0].leaf) {
+            out_.root = makeLeaf(0);
+            return;
+        }
+        out_.nodes.emplace_back();
+        out_.root = NodeRef::inner(0);
+        fillNode(0, 0);
+    }
+
+private:
+    /// What the dynamic program knows of one binary node.
+    struct Plan {
+        uint32_t begin = 0, count = 0;  ///< the subtree's primitives, contiguous in primIndices
+        bool leaf = false;              ///< as a child slot: a leaf (else a wide node)
+        float slot = 0;                 ///< the subtree's cost in one child slot
+        float forest[N + 1];            ///< forest[j]: its cost in at most j slots (j >= 1)
+        uint8_t split[N + 1];           ///< forest[j] splits into (split[j], j - split[j]) of the children; 0: one slot
+    };
+
+    uint32_t blocksOf(uint32_t count) const {
+        return (count + uint32_t(config_.blockSize) - 1) / uint32_t(config_.blockSize);
+    }
+
+    /// Children before parents: the builder numbers every node's children after the node itself.
+    void solve() {
+        // A leaf made of a dissolved subtree holds at most this many blocks (and at most what one wide
+        // leaf can address).
+        const uint32_t maxMergedBlocks = std::min<uint32_t>(NodeRef::kMaxLeafItems, 4);
+        for (size_t i = binary_.nodes.size(); i-- > 0;) {
+            const BinaryNode& node = binary_.nodes[i];
+            Plan& plan = nodes_[i];
+            const float area = node.bounds.area();
+            if (node.isLeaf()) {
+                plan.begin = node.first;
+                plan.count = node.count;
+                plan.leaf = true;
+                plan.slot = config_.intersectionCost * float(blocksOf(node.count)) * area;
+                for (int j = 1; j <= N; ++j) plan.forest[j] = plan.slot, plan.split[j] = 0;
+                continue;
+            }
+            const Plan &l = nodes_[node.first], &r = nodes_[node.first + 1];
+            plan.begin = l.begin;
+            plan.count = l.count + r.count;
+            float inner = std::numeric_limits<float>::infinity();
+            for (int k = 1; k < N; ++k) inner = std::min(inner, l.forest[k] + r.forest[N - k]);
+            inner += config_.traversalCost * area;
+            const uint32_t blocks = blocksOf(plan.count);
+            const float leaf = blocks <= maxMergedBlocks ? config_.intersectionCost * float(blocks) * area
+                                                         : std::numeric_limits<float>::infinity();
+            plan.leaf = leaf <= inner;
+            plan.slot = plan.leaf ? leaf : inner;
+            plan.forest[1] = plan.slot;
+            plan.split[1] = 0;
+            for (int j = 2; j <= N; ++j) {
+                plan.forest[j] = plan.slot;
+                plan.split[j] = 0;
+                for (int k = 1; k < j; ++k)
+                    if (l.forest[k] + r.forest[j - k] < plan.forest[j]) {
+                        plan.forest[j] = l.forest[k] + r.forest[j - k];
+                        plan.split[j] = uint8_t(k);
+                    }
+            }
+        }
+    }
+
+    /// The binary nodes that take the `slots` child slots of subtree `index`, as the plan splits it.
+    void expand(uint32_t index, int slots, uint32_t* children, int& count) const {
+        const Plan& plan = nodes_[index];
+        if (plan.split[slots] == 0) {
+            children[count++] = index;
+            return;
+        }
+        const uint32_t left = binary_.nodes[index].first;
+        expand(left, plan.split[slots], children, count);
+        expand(left + 1, slots - plan.split[slots], children, count);
+    }
+
+    NodeRef makeLeaf(uint32_t index) {
+        const Plan& plan = nodes_[index];
+        std::span<const uint32_t> prims(binary_.primIndices.data() + plan.begin, plan.count);
+        uint32_t count = 0;
+        const uint32_t first = emitLeaf_(prims, count);
+        return NodeRef::leaf(first, count);
+    }
+
+    void fillNode(uint32_t wideIndex, uint32_t binaryIndex) {
+        // The best split of the node's N slots between its two children, as solve() found it.
+        const Plan &l = nodes_[binary_.nodes[binaryIndex].first], &r = nodes_[binary_.nodes[binaryIndex].first + 1];
+        int best = 1;
+        for (int k = 2; k < N; ++k)
+            if (l.forest[k] + r.forest[N - k] < l.forest[best] + r.forest[N - best]) best = k;
+        uint32_t children[N];
+        int childCount = 0;
+        const uint32_t left = binary_.nodes[binaryIndex].first;
+        expand(left, best, children, childCount);
+        expand(left + 1, N - best, children, childCount);
+
+        // Inner children get adjacent slots in the node array before any of them is filled.
+        int innerCount = 0;
+        for (int i = 0; i < childCount; ++i) innerCount += nodes_[children[i]].leaf ? 0 : 1;
+        const uint32_t nextInner = uint32_t(out_.nodes.size());
+        out_.nodes.resize(out_.nodes.size() + innerCount);
+
+        WideNode<N> node = emptyNode<N>();
+        uint32_t pending[N];
+        int pendingCount = 0;
+        for (int i = 0; i < childCount; ++i) {
+            setChildBounds(node, i, binary_.nodes[children[i]].bounds);
+            if (nodes_[children[i]].leaf) {
+                node.child[i] = makeLeaf(children[i]);
+            } else {
+                node.child[i] = NodeRef::inner(nextInner + pendingCount);
+                pending[pendingCount++] = children[i];
+            }
+        }
+        out_.nodes[wideIndex] = node;
+        for (int i = 0; i < pendingCount; ++i) fillNode(nextInner + i, pending[i]);
+    }
+
+    const BinaryBvh& binary_;
+    const LeafEmitter& emitLeaf_;
+    const BvhBuildConfig& config_;
+    WideBvh<N>& out_;
+    std::vector<Plan> nodes_;
+};
+
 } // namespace
 
 template <int N>
-WideBvh<N> collapseBvh(const BinaryBvh& binary, const LeafEmitter& emitLeaf) {
+WideBvh<N> collapseBvh(const BinaryBvh& binary, const LeafEmitter& emitLeaf, const BvhBuildConfig& config) {
     WideBvh<N> out;
     out.nodes.reserve(binary.nodes.size() / (N - 1) + 1);
-    Collapser<N>(binary, emitLeaf, out).run();
+    if (config.collapse == CollapseMethod::Sah) SahCollapser<N>(binary, emitLeaf, config, out).run();
+    else GreedyCollapser<N>(binary, emitLeaf, out).run();
     return out;
 }
 
-template WideBvh<4> collapseBvh<4>(const BinaryBvh&, const LeafEmitter&);
-template WideBvh<8> collapseBvh<8>(const BinaryBvh&, const LeafEmitter&);
+template WideBvh<4> collapseBvh<4>(const BinaryBvh&, const LeafEmitter&, const BvhBuildConfig&);
+template WideBvh<8> collapseBvh<8>(const BinaryBvh&, const LeafEmitter&, const BvhBuildConfig&);
 
 } // namespace wideray

@@ -44,6 +44,7 @@ void visitWide(const WideBvh<N>& bvh, const BvhBuildConfig& config, NodeRef ref,
     ++s.innerNodes;
     s.sahCost += config.traversalCost * relArea;
     const WideNode<N>& node = bvh.nodes[ref.index()];
+    for (int i = 0; i < N; ++i) s.children += node.child[i].bits != NodeRef::empty().bits;
     for (int i = 0; i < N; ++i) visitWide(bvh, config, node.child[i], childArea(node, i), depth + 1, rootArea, s);
 }
 

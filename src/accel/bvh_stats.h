@@ -9,12 +9,16 @@ namespace wideray {
 
 struct BvhStats {
     size_t innerNodes = 0;
+    size_t children = 0;   ///< non-empty child slots of the inner nodes (wide BVHs)
     size_t leaves = 0;
     size_t leafItems = 0;  ///< triangle blocks or primitive references
     int depth = 0;         ///< levels of inner nodes on the longest path
     /// SAH cost: sum over inner nodes of traversalCost * area / rootArea plus sum over leaves of
     /// intersectionCost * items * area / rootArea.
     double sahCost = 0;
+
+    /// Children per inner node, out of N for an N-wide BVH.
+    double childrenPerNode() const { return innerNodes ? double(children) / double(innerNodes) : 0.0; }
 };
 
 BvhStats binaryBvhStats(const BinaryBvh& bvh, const BvhBuildConfig& config);

@@ -128,7 +128,7 @@ WideBvh<N> SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuil
         }
         return first;
     };
-    WideBvh<N> bvh = collapseBvh<N>(binary, emit);
+    WideBvh<N> bvh = collapseBvh<N>(binary, emit, config);
     timings_.collapseSeconds += secondsSince(start);
     return bvh;
 }
@@ -156,7 +156,7 @@ WideBvh<N> SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
         count = uint32_t(leafPrims.size());
         return first;
     };
-    WideBvh<N> bvh = collapseBvh<N>(binary, emit);
+    WideBvh<N> bvh = collapseBvh<N>(binary, emit, userConfig);
     markUserLeaves(bvh);
     timings_.binarySeconds += secondsSince(start);
     return bvh;

@@ -62,9 +62,9 @@ struct WideBvh {
 /// count is returned through `count` (at most NodeRef::kMaxLeafItems).
 using LeafEmitter = std::function<uint32_t(std::span<const uint32_t> prims, uint32_t& count)>;
 
-/// Collapses a binary BVH into an N-wide one (N = 4 or 8): each wide node takes the binary node's
-/// children and keeps opening the one with the largest surface area until it has N.
+/// Collapses a binary BVH into an N-wide one (N = 4 or 8) as config.collapse says: the wide tree of
+/// least SAH cost (config's traversal and intersection costs, blocks of config.blockSize), or greedily.
 template <int N>
-WideBvh<N> collapseBvh(const BinaryBvh& binary, const LeafEmitter& emitLeaf);
+WideBvh<N> collapseBvh(const BinaryBvh& binary, const LeafEmitter& emitLeaf, const BvhBuildConfig& config);
 
 } // namespace wideray

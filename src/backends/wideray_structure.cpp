@@ -30,10 +30,14 @@ std::string WideBvhStructure<N>::summary() const {
     const uint64_t triangles = geometry().triangleCount();
     const double bytesPerTriangle = triangles == 0 ? 0.0 : double(bytes()) / double(triangles);
     const BuildTimings& t = accel_.timings();
-    return fmt::format("BVH{}: {} inner nodes, {} leaves ({} blocks of {} triangles), depth {}, SAH cost {:.2f}, "
-                       "{:.1f} bytes/triangle, build {:.1f} ms (binned SAH {:.1f} ms + collapse {:.1f} ms)",
-                       N, s.innerNodes, s.leaves, s.leafItems, kBlockSize, s.depth, s.sahCost, bytesPerTriangle,
-                       t.totalSeconds() * 1e3, t.binarySeconds * 1e3, t.collapseSeconds * 1e3);
+    const size_t blocks = accel_.blocks().size();
+    const double blockFill = blocks ? double(triangles) / double(blocks * kBlockSize) : 0.0;
+    return fmt::format("BVH{}: {} inner nodes ({:.2f} of {} children each), {} leaves ({} blocks of {} triangles, "
+                       "{:.0f}% full), depth {}, SAH cost {:.2f}, {:.1f} bytes/triangle, build {:.1f} ms (binned SAH "
+                       "{:.1f} ms + collapse {:.1f} ms)",
+                       N, s.innerNodes, s.childrenPerNode(), N, s.leaves, blocks, kBlockSize, 100.0 * blockFill,
+                       s.depth, s.sahCost, bytesPerTriangle, t.totalSeconds() * 1e3, t.binarySeconds * 1e3,
+                       t.collapseSeconds * 1e3);
 }
 
 template <int N>
