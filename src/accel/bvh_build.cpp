@@ -21,16 +21,28 @@ struct Bin {
     uint32_t count = 0;
 };
 
+/// The bins of the three axes; only the first binCount of each are in use (and initialized).
 struct BinSet {
-    std::array<std::array<Bin, kMaxBins>, 3> bins{};
+    int binCount;
+    std::array<std::array<Bin, kMaxBins>, 3> bins;
 
-    void merge(const BinSet& other, int binCount) {
+    explicit BinSet(int count) : binCount(count) {
+        for (auto& axis : bins)
+            for (int b = 0; b < binCount; ++b) axis[b] = Bin{};
+    }
+    void merge(const BinSet& other) {
         for (int a = 0; a < 3; ++a)
             for (int b = 0; b < binCount; ++b) {
                 bins[a][b].bounds.grow(other.bins[a][b].bounds);
                 bins[a][b].count += other.bins[a][b].count;
             }
     }
+};
+
+/// How centers map to bins along one axis: bin = (center - lower) * scale, clamped.
+struct AxisBins {
+    float lower = 0, scale = 0;
+    bool splittable = false;  ///< the centers spread along the axis
 };
 
 struct Split {
@@ -83,38 +95,50 @@ private:
         centerBounds = result.second;
     }
 
-    int binOf(const glm::vec3& center, int axis, const Bounds3f& centerBounds) const {
-        float lo = centerBounds.lower[axis];
-        float scale = float(config_.binCount) / (centerBounds.upper[axis] - lo);
-        int b = int((center[axis] - lo) * scale);
+    AxisBins axisBins(const Bounds3f& centerBounds, int axis) const {
+        AxisBins bins;
+        bins.lower = centerBounds.lower[axis];
+        bins.splittable = centerBounds.upper[axis] > centerBounds.lower[axis];
+        bins.scale = float(config_.binCount) / (centerBounds.upper[axis] - bins.lower);
+        return bins;
+    }
+
+    int binOf(const glm::vec3& center, int axis, const AxisBins& bins) const {
+        int b = int((center[axis] - bins.lower) * bins.scale);
         return std::clamp(b, 0, config_.binCount - 1);
+    }
+
+    void fillBins(uint32_t begin, uint32_t end, const std::array<AxisBins, 3>& axes, BinSet& set) const {
+        for (uint32_t i = begin; i != end; ++i) {
+            const uint32_t p = out_.primIndices[i];
+            for (int a = 0; a < 3; ++a) {
+                if (!axes[a].splittable) continue;
+                Bin& bin = set.bins[a][binOf(centers_[p], a, axes[a])];
+                bin.bounds.grow(bounds_[p]);
+                ++bin.count;
+            }
+        }
     }
 
     Split findSahSplit(uint32_t begin, uint32_t end, const Bounds3f& centerBounds) const {
         const int binCount = config_.binCount;
-        auto fill = [&](const tbb::blocked_range<uint32_t>& r, BinSet acc) {
-            for (uint32_t i = r.begin(); i != r.end(); ++i) {
-                uint32_t p = out_.primIndices[i];
-                for (int a = 0; a < 3; ++a) {
-                    if (centerBounds.upper[a] <= centerBounds.lower[a]) continue;
-                    Bin& bin = acc.bins[a][binOf(centers_[p], a, centerBounds)];
-                    bin.bounds.grow(bounds_[p]);
-                    ++bin.count;
-                }
-            }
-            return acc;
-        };
-        BinSet binSet;
+        const std::array<AxisBins, 3> axes = {axisBins(centerBounds, 0), axisBins(centerBounds, 1),
+                                              axisBins(centerBounds, 2)};
+        BinSet binSet(binCount);
         if (end - begin >= kParallelThreshold)
             binSet = tbb::parallel_reduce(
-                tbb::blocked_range<uint32_t>(begin, end, 4096), BinSet{}, fill,
-                [binCount](BinSet a, const BinSet& b) { a.merge(b, binCount); return a; });
+                tbb::blocked_range<uint32_t>(begin, end, 4096), BinSet(binCount),
+                [&](const tbb::blocked_range<uint32_t>& r, BinSet acc) {
+                    fillBins(r.begin(), r.end(), axes, acc);
+                    return acc;
+                },
+                [](BinSet a, const BinSet& b) { a.merge(b); return a; });
         else
-            binSet = fill(tbb::blocked_range<uint32_t>(begin, end), BinSet{});
+            fillBins(begin, end, axes, binSet);
 
         Split best;
         for (int a = 0; a < 3; ++a) {
-            if (centerBounds.upper[a] <= centerBounds.lower[a]) continue;
+            if (!axes[a].splittable) continue;
             const auto& bins = binSet.bins[a];
             std::array<float, kMaxBins> rightCost{};
             Bounds3f acc;
@@ -138,8 +162,9 @@ private:
 
     uint32_t partitionAtBin(uint32_t begin, uint32_t end, const Split& split, const Bounds3f& centerBounds) {
         auto first = out_.primIndices.begin();
+        const AxisBins bins = axisBins(centerBounds, split.axis);
         auto mid = std::partition(first + begin, first + end, [&](uint32_t p) {
-            return binOf(centers_[p], split.axis, centerBounds) <= split.bin;
+            return binOf(centers_[p], split.axis, bins) <= split.bin;
         });
         return uint32_t(mid - first);
     }
