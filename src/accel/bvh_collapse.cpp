@@ -28,6 +28,33 @@ void setChildBounds(WideNode<N>& node, int i, const Bounds3f& b) {
     node.upperZ[i] = b.upper.z;
 }
 
+/// Writes wide node `wideIndex` with `children` (binary nodes) in its slots: `isLeaf(b)` says which
+/// become leaves, `makeLeaf(b)` emits one, `fill(wideIndex, b)` builds an inner child's node. Inner
+/// children get adjacent slots in the node array before any of them is filled.
+template <int N, class IsLeaf, class MakeLeaf, class Fill>
+void writeWideNode(const BinaryBvh& binary, WideBvh<N>& out, uint32_t wideIndex, const uint32_t* children,
+                   int childCount, IsLeaf isLeaf, MakeLeaf makeLeaf, Fill fill) {
+    int innerCount = 0;
+    for (int i = 0; i < childCount; ++i) innerCount += isLeaf(children[i]) ? 0 : 1;
+    const uint32_t nextInner = uint32_t(out.nodes.size());
+    out.nodes.resize(out.nodes.size() + innerCount);
+
+    WideNode<N> node = emptyNode<N>();
+    uint32_t pending[N];
+    int pendingCount = 0;
+    for (int i = 0; i < childCount; ++i) {
+        setChildBounds(node, i, binary.nodes[children[i]].bounds);
+        if (isLeaf(children[i])) {
+            node.child[i] = makeLeaf(children[i]);
+        } else {
+            node.child[i] = NodeRef::inner(nextInner + pendingCount);
+            pending[pendingCount++] = children[i];
+        }
+    }
+    out.nodes[wideIndex] = node;
+    for (int i = 0; i < pendingCount; ++i) fill(nextInner + i, pending[i]);
+}
+
 /// The greedy collapse: each wide node takes the binary node's children and keeps opening the one
 /// with the largest surface area until it has N.
 template <int N>
@@ -78,27 +105,9 @@ private:
             children[childCount++] = binary_.nodes[opened].first + 1;
         }
 
-        // Inner children get adjacent slots in the node array before any of them is filled.
-        int innerCount = 0;
-        for (int i = 0; i < childCount; ++i) innerCount += binary_.nodes[children[i]].isLeaf() ? 0 : 1;
-        uint32_t nextInner = uint32_t(out_.nodes.size());
-        out_.nodes.resize(out_.nodes.size() + innerCount);
-
-        WideNode<N> node = emptyNode<N>();
-        uint32_t pending[N];
-        int pendingCount = 0;
-        for (int i = 0; i < childCount; ++i) {
-            const BinaryNode& c = binary_.nodes[children[i]];
-            setChildBounds(node, i, c.bounds);
-            if (c.isLeaf()) {
-                node.child[i] = makeLeaf(c);
-            } else {
-                node.child[i] = NodeRef::inner(nextInner + pendingCount);
-                pending[pendingCount++] = children[i];
-            }
-        }
-        out_.nodes[wideIndex] = node;
-        for (int i = 0; i < pendingCount; ++i) fillNode(nextInner + i, pending[i]);
+        writeWideNode<N>(
+            binary_, out_, wideIndex, children, childCount, [&](uint32_t b) { return binary_.nodes[b].isLeaf(); },
+            [&](uint32_t b) { return makeLeaf(binary_.nodes[b]); }, [&](uint32_t w, uint32_t b) { fillNode(w, b); });
     }
 
     const BinaryBvh& binary_;
@@ -138,6 +147,7 @@ private:
         float slot = 0;                 ///< the subtree's cost in one child slot
         float forest[N + 1];            ///< forest[j]: its cost in at most j slots (j >= 1)
         uint8_t split[N + 1];           ///< forest[j] splits into (split[j], j - split[j]) of the children; 0: one slot
+        uint8_t nodeSplit = 0;          ///< as a wide node: its N slots split (nodeSplit, N - nodeSplit) between the children
     };
 
     uint32_t blocksOf(uint32_t count) const {
@@ -165,7 +175,11 @@ private:
             plan.begin = l.begin;
             plan.count = l.count + r.count;
             float inner = std::numeric_limits<float>::infinity();
-            for (int k = 1; k < N; ++k) inner = std::min(inner, l.forest[k] + r.forest[N - k]);
+            for (int k = 1; k < N; ++k)
+                if (l.forest[k] + r.forest[N - k] < inner) {
+                    inner = l.forest[k] + r.forest[N - k];
+                    plan.nodeSplit = uint8_t(k);
+                }
             inner += config_.traversalCost * area;
             const uint32_t blocks = blocksOf(plan.count);
             const float leaf = blocks <= maxMergedBlocks ? config_.intersectionCost * float(blocks) * area
@@ -207,37 +221,16 @@ private:
     }
 
     void fillNode(uint32_t wideIndex, uint32_t binaryIndex) {
-        // The best split of the node's N slots between its two children, as solve() found it.
-        const Plan &l = nodes_[binary_.nodes[binaryIndex].first], &r = nodes_[binary_.nodes[binaryIndex].first + 1];
-        int best = 1;
-        for (int k = 2; k < N; ++k)
-            if (l.forest[k] + r.forest[N - k] < l.forest[best] + r.forest[N - best]) best = k;
         uint32_t children[N];
         int childCount = 0;
         const uint32_t left = binary_.nodes[binaryIndex].first;
-        expand(left, best, children, childCount);
-        expand(left + 1, N - best, children, childCount);
+        const int split = nodes_[binaryIndex].nodeSplit;
+        expand(left, split, children, childCount);
+        expand(left + 1, N - split, children, childCount);
 
-        // Inner children get adjacent slots in the node array before any of them is filled.
-        int innerCount = 0;
-        for (int i = 0; i < childCount; ++i) innerCount += nodes_[children[i]].leaf ? 0 : 1;
-        const uint32_t nextInner = uint32_t(out_.nodes.size());
-        out_.nodes.resize(out_.nodes.size() + innerCount);
-
-        WideNode<N> node = emptyNode<N>();
-        uint32_t pending[N];
-        int pendingCount = 0;
-        for (int i = 0; i < childCount; ++i) {
-            setChildBounds(node, i, binary_.nodes[children[i]].bounds);
-            if (nodes_[children[i]].leaf) {
-                node.child[i] = makeLeaf(children[i]);
-            } else {
-                node.child[i] = NodeRef::inner(nextInner + pendingCount);
-                pending[pendingCount++] = children[i];
-            }
-        }
-        out_.nodes[wideIndex] = node;
-        for (int i = 0; i < pendingCount; ++i) fillNode(nextInner + i, pending[i]);
+        writeWideNode<N>(
+            binary_, out_, wideIndex, children, childCount, [&](uint32_t b) { return nodes_[b].leaf; },
+            [&](uint32_t b) { return makeLeaf(b); }, [&](uint32_t w, uint32_t b) { fillNode(w, b); });
     }
 
     const BinaryBvh& binary_;

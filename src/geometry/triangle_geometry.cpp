@@ -85,8 +85,7 @@ uint32_t TriangleGeometry::instanceOf(uint32_t primId) const {
     return uint32_t(it - instanceFirst_.begin()) - 1;
 }
 
-SurfacePoint TriangleGeometry::surface(const Ray& ray, const Hit& hit) const {
-    (void)ray;
+SurfacePoint TriangleGeometry::surface(const Ray&, const Hit& hit) const {
     const glm::uvec3& tri = world_.triangles[hit.primId];
     const glm::vec3 &a = world_.positions[tri.x], &b = world_.positions[tri.y], &c = world_.positions[tri.z];
     float w = 1.0f - hit.u - hit.v;

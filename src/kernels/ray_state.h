@@ -136,6 +136,8 @@ struct PacketUserHits {
     const Ray& ray(int lane) const { return rays[lane]; }
     uint32_t& geomId(int lane) { return geomIds[lane]; }
     uint32_t& primId(int lane) { return primIds[lane]; }
+    uint32_t geomId(int lane) const { return geomIds[lane]; }
+    uint32_t primId(int lane) const { return primIds[lane]; }
 };
 
 /// The traversal work of each lane of a packet (the cost AOV): box tests of inner nodes the lane's
@@ -171,7 +173,7 @@ struct PacketCost {
 
 /// The closest hit of one lane so far.
 template <int K, class UserHits>
-inline Hit laneHit(const PacketLanes<K>& lanes, UserHits& user, int lane) {
+inline Hit laneHit(const PacketLanes<K>& lanes, const UserHits& user, int lane) {
     if (lanes.prim[lane] != kNoPrim) return {lanes.t[lane], lanes.u[lane], lanes.v[lane], uint32_t(lanes.prim[lane]), 0};
     if (user.geomId(lane) != kInvalidId)
         return {lanes.t[lane], lanes.u[lane], lanes.v[lane], user.primId(lane), user.geomId(lane)};

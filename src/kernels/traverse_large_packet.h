@@ -138,12 +138,12 @@ struct LargePacket {
         return -reduceMin(-m);
     }
 
-    void write(int count, Hit* hitsOut, uint8_t* occludedOut, TraversalCost* costsOut, bool anyHit) const {
+    template <bool AnyHit>
+    void write(int count, Hit* hitsOut, uint8_t* occludedOut, TraversalCost* costsOut) const {
         for (int s = 0; s < subCount; ++s) {
             const int n = count - s * K < K ? count - s * K : K;
-            PacketUserHits<K> user = users[s];
-            if (anyHit) writePacketResults<K, true>(hits[s], user, movemask(valid[s]), movemask(done[s]), n, nullptr, occludedOut + s * K);
-            else writePacketResults<K, false>(hits[s], user, movemask(valid[s]), 0, n, hitsOut + s * K, nullptr);
+            writePacketResults<K, AnyHit>(hits[s], users[s], movemask(valid[s]), movemask(done[s]), n,
+                                          AnyHit ? nullptr : hitsOut + s * K, AnyHit ? occludedOut + s * K : nullptr);
             costs[s].write(n, costsOut ? costsOut + s * K : nullptr);
         }
     }
@@ -229,7 +229,7 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
             tfarMax = lp.tfarMax();
         }
     }
-    lp.write(count, hitsOut, occludedOut, costsOut, AnyHit);
+    lp.template write<AnyHit>(count, hitsOut, occludedOut, costsOut);
 }
 
 /// Closest hits (or occlusion) of up to K * P rays, and their costs where `costsOut` is given.

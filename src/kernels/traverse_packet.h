@@ -45,7 +45,7 @@ template <int N, int K>
 
 /// The hits (or occlusion) of a packet, written out: invalid lanes miss and are not occluded.
 template <int K, bool AnyHit, class UserHits>
-inline void writePacketResults(const PacketHit<K>& h, UserHits& user, uint32_t validBits, uint32_t occludedBits,
+inline void writePacketResults(const PacketHit<K>& h, const UserHits& user, uint32_t validBits, uint32_t occludedBits,
                                int count, Hit* hitsOut, uint8_t* occludedOut) {
     PacketLanes<K> lanes;
     lanes.store(h);

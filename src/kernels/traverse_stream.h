@@ -146,8 +146,8 @@ struct StreamLanes {
         slots.store(slot);
     }
     const Ray& ray(int lane) const { return rays[ws.rayOf[slot[lane]]]; }
-    uint32_t& geomId(int lane) { return ws.userGeomId[slot[lane]]; }
-    uint32_t& primId(int lane) { return ws.userPrimId[slot[lane]]; }
+    uint32_t& geomId(int lane) const { return ws.userGeomId[slot[lane]]; }
+    uint32_t& primId(int lane) const { return ws.userPrimId[slot[lane]]; }
 
     void visit(uint32_t lanes) {
         if (ws.countCost)
