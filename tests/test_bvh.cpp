@@ -146,11 +146,8 @@ TEST(Bvh, IdenticalTrianglesStillGiveABoundedTree) {
 
 TEST(Bvh, BinaryLeavesRespectTheLeafSize) {
     TriangleMesh mesh = testMesh();
-    std::vector<Bounds3f> bounds;
-    std::vector<glm::vec3> centers;
-    triangleBounds(mesh, bounds, centers);
     BvhBuildConfig config;
-    BinaryBvh bvh = buildBinaryBvh(bounds, centers, config);
+    BinaryBvh bvh = buildBinaryBvh(triangleRefs(mesh), config);
     size_t total = 0;
     for (const BinaryNode& n : bvh.nodes)
         if (n.isLeaf()) {
@@ -161,12 +158,9 @@ TEST(Bvh, BinaryLeavesRespectTheLeafSize) {
 }
 
 double sahCost(const TriangleMesh& mesh, SplitMethod split) {
-    std::vector<Bounds3f> bounds;
-    std::vector<glm::vec3> centers;
-    triangleBounds(mesh, bounds, centers);
     BvhBuildConfig config;
     config.split = split;
-    return binaryBvhStats(buildBinaryBvh(bounds, centers, config), config).sahCost;
+    return binaryBvhStats(buildBinaryBvh(triangleRefs(mesh), config), config).sahCost;
 }
 
 TEST(Bvh, SahCostBelowMedianSplit) {

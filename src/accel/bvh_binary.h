@@ -1,10 +1,11 @@
 #pragma once
 // Binary BVH built with the binned surface area heuristic (Wald 2007, "On fast construction of
-// SAH-based bounding volume hierarchies"). It is the input of the wide collapse, not a tracing layout.
+// SAH-based bounding volume hierarchies"), with spatial splits at high quality (Stich et al. 2009). It
+// is the input of the wide collapse, not a tracing layout.
 #include <cstdint>
-#include <span>
 #include <vector>
 
+#include "accel/build_ref.h"
 #include "core/bounds.h"
 
 namespace wideray {
@@ -19,7 +20,7 @@ struct BinaryNode {
 
 struct BinaryBvh {
     std::vector<BinaryNode> nodes;  ///< nodes[0] is the root
-    std::vector<uint32_t> primIndices;
+    std::vector<uint32_t> primIndices;  ///< leaves' primitives; a subtree's are contiguous
 };
 
 enum class SplitMethod { Sah, Median };
@@ -27,6 +28,12 @@ enum class SplitMethod { Sah, Median };
 /// How the binary tree becomes a wide one: the SAH-optimal collapse (dynamic programming), or greedily
 /// opening the largest child until a node has N.
 enum class CollapseMethod { Sah, Greedy };
+
+/// Fast: object splits only, each primitive in one leaf. High: spatial splits too, which clip
+/// primitives so that one may be referenced by several leaves (within replicationBudget).
+enum class BuildQuality { Fast, High };
+
+class TriangleSplitter;
 
 struct BvhBuildConfig {
     SplitMethod split = SplitMethod::Sah;
@@ -37,14 +44,22 @@ struct BvhBuildConfig {
     int blockSize = 1;
     float traversalCost = 1.0f;
     float intersectionCost = 1.0f;
+    BuildQuality quality = BuildQuality::Fast;
+    /// High quality: at most this many extra references, as a fraction of the primitives (Embree: 0.2).
+    float replicationBudget = 0.2f;
+    int spatialBinCount = 16;
+    /// High quality: spatial splits are tried where the best object split's children overlap by more
+    /// than this fraction of the root's area (Stich et al.'s alpha).
+    float spatialOverlap = 1e-5f;
 };
 
 /// The deepest a build goes; past kMedianDepth it splits at the object median, which bounds the depth.
 constexpr int kMaxBvhDepth = 64;
 
-/// Builds over primitive boxes and their centers (both of the same length, at least one). Parallel
-/// with oneTBB; the tree's shape does not depend on the thread count.
-BinaryBvh buildBinaryBvh(std::span<const Bounds3f> primBounds, std::span<const glm::vec3> centers,
-                         const BvhBuildConfig& config);
+/// Builds over one reference per primitive (at least one; ref.prim its index). At high quality the
+/// splitter clips primitives (without one the build is the fast one). Parallel with oneTBB; the
+/// tree's shape does not depend on the thread count.
+BinaryBvh buildBinaryBvh(std::vector<BuildRef> refs, const BvhBuildConfig& config,
+                         const TriangleSplitter* splitter = nullptr);
 
 } // namespace wideray

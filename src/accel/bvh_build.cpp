@@ -1,241 +1,303 @@
 #include "accel/bvh_binary.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <cassert>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
-#include <tbb/blocked_range.h>
+
+#include "accel/object_bins.h"
+#include "accel/spatial_bins.h"
 
 namespace wideray {
 namespace {
 
-constexpr int kMaxBins = 64;
 constexpr int kMedianDepth = kMaxBvhDepth - 24;  // leaves room for log2(2^24) median levels
-constexpr size_t kParallelThreshold = 4096;
+constexpr uint32_t kParallelThreshold = 4096;    // references: above, a node bins in parallel and its subtrees run as tasks
+constexpr uint32_t kParallelGrain = 4096;
 
-struct Bin {
-    Bounds3f bounds;
-    uint32_t count = 0;
+/// A node's references: [begin, end) in use, [end, capacityEnd) free for the duplicates that spatial
+/// splits below it create. Bounds of the references and of their center2.
+struct BuildRange {
+    uint32_t begin = 0, end = 0, capacityEnd = 0;
+    BuildBox bounds, centroids;
+
+    uint32_t size() const { return end - begin; }
+    uint32_t spare() const { return capacityEnd - end; }
 };
 
-/// The bins of the three axes; only the first binCount of each are in use (and initialized).
-struct BinSet {
-    int binCount;
-    std::array<std::array<Bin, kMaxBins>, 3> bins;
+struct RangeBounds {
+    BuildBox bounds, centroids;
 
-    explicit BinSet(int count) : binCount(count) {
-        for (auto& axis : bins)
-            for (int b = 0; b < binCount; ++b) axis[b] = Bin{};
+    void add(const BuildRef* refs, uint32_t begin, uint32_t end) {
+        for (uint32_t i = begin; i != end; ++i) {
+            const BuildBox box(refs[i]);
+            bounds.grow(box);
+            centroids.grow(box.center2());
+        }
     }
-    void merge(const BinSet& other) {
-        for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < binCount; ++b) {
-                bins[a][b].bounds.grow(other.bins[a][b].bounds);
-                bins[a][b].count += other.bins[a][b].count;
-            }
+    void merge(const RangeBounds& other) {
+        bounds.grow(other.bounds);
+        centroids.grow(other.centroids.lower);
+        centroids.grow(other.centroids.upper);
     }
 };
 
-/// How centers map to bins along one axis: bin = (center - lower) * scale, clamped.
-struct AxisBins {
-    float lower = 0, scale = 0;
-    bool splittable = false;  ///< the centers spread along the axis
-};
-
-struct Split {
-    int axis = -1;
-    int bin = 0;  ///< primitives in bins [0, bin] go left
-    float cost = std::numeric_limits<float>::infinity();
-};
+/// Reduces `add` over [begin, end) into `result` (fresh from `make`), in parallel for large ranges.
+/// Exact whatever the split: bins only take minima, maxima and integer counts.
+template <class T, class Make, class Add>
+void reduceRange(uint32_t begin, uint32_t end, T& result, Make make, Add add) {
+    if (end - begin < kParallelThreshold) {
+        add(result, begin, end);
+        return;
+    }
+    result = tbb::parallel_reduce(
+        tbb::blocked_range<uint32_t>(begin, end, kParallelGrain), make(),
+        [&](const tbb::blocked_range<uint32_t>& r, T acc) {
+            add(acc, r.begin(), r.end());
+            return acc;
+        },
+        [](T a, const T& b) {
+            a.merge(b);
+            return a;
+        });
+}
 
 class Builder {
 public:
-    Builder(std::span<const Bounds3f> bounds, std::span<const glm::vec3> centers, const BvhBuildConfig& config,
-            BinaryBvh& out)
-        : bounds_(bounds), centers_(centers), config_(config), out_(out) {}
+    Builder(std::vector<BuildRef>& refs, const BvhBuildConfig& config, const TriangleSplitter* splitter, BinaryBvh& out)
+        : refs_(refs), config_(config), splitter_(config.quality == BuildQuality::High ? splitter : nullptr), out_(out) {}
 
     void build() {
-        size_t n = bounds_.size();
-        out_.primIndices.resize(n);
-        for (size_t i = 0; i < n; ++i) out_.primIndices[i] = uint32_t(i);
-        out_.nodes.resize(2 * n - 1);
+        const uint32_t primCount = uint32_t(refs_.size());
+        const uint32_t capacity =
+            splitter_ ? primCount + uint32_t(double(primCount) * std::max(0.0f, config_.replicationBudget)) : primCount;
+        refs_.resize(capacity);
+        out_.nodes.resize(2 * size_t(capacity) - 1);
         nodeCount_ = 1;
-        buildNode(0, 0, uint32_t(n), 0);
+        BuildRange root = measured(0, primCount, capacity);
+        rootHalfArea_ = root.bounds.halfArea();
+        buildNode(0, root, 0);
         out_.nodes.resize(nodeCount_);
+        gatherLeaves();
     }
 
 private:
-    float blocks(uint32_t count) const {
-        return float((count + uint32_t(config_.blockSize) - 1) / uint32_t(config_.blockSize));
+    uint32_t blockSize() const { return uint32_t(config_.blockSize); }
+
+    BuildRange measured(uint32_t begin, uint32_t end, uint32_t capacityEnd) const {
+        RangeBounds b;
+        reduceRange(
+            begin, end, b, [] { return RangeBounds(); },
+            [&](RangeBounds& acc, uint32_t from, uint32_t to) { acc.add(refs_.data(), from, to); });
+        return {begin, end, capacityEnd, b.bounds, b.centroids};
     }
 
-    void rangeBounds(uint32_t begin, uint32_t end, Bounds3f& nodeBounds, Bounds3f& centerBounds) const {
-        auto reduce = [&](const tbb::blocked_range<uint32_t>& r, std::pair<Bounds3f, Bounds3f> acc) {
-            for (uint32_t i = r.begin(); i != r.end(); ++i) {
-                uint32_t p = out_.primIndices[i];
-                acc.first.grow(bounds_[p]);
-                acc.second.grow(centers_[p]);
-            }
-            return acc;
-        };
-        auto join = [](std::pair<Bounds3f, Bounds3f> a, const std::pair<Bounds3f, Bounds3f>& b) {
-            a.first.grow(b.first);
-            a.second.grow(b.second);
-            return a;
-        };
-        std::pair<Bounds3f, Bounds3f> result;
-        if (end - begin >= kParallelThreshold)
-            result = tbb::parallel_reduce(tbb::blocked_range<uint32_t>(begin, end, 1024), result, reduce, join);
-        else
-            result = reduce(tbb::blocked_range<uint32_t>(begin, end), result);
-        nodeBounds = result.first;
-        centerBounds = result.second;
-    }
-
-    AxisBins axisBins(const Bounds3f& centerBounds, int axis) const {
-        AxisBins bins;
-        bins.lower = centerBounds.lower[axis];
-        bins.splittable = centerBounds.upper[axis] > centerBounds.lower[axis];
-        bins.scale = float(config_.binCount) / (centerBounds.upper[axis] - bins.lower);
-        return bins;
-    }
-
-    int binOf(const glm::vec3& center, int axis, const AxisBins& bins) const {
-        int b = int((center[axis] - bins.lower) * bins.scale);
-        return std::clamp(b, 0, config_.binCount - 1);
-    }
-
-    void fillBins(uint32_t begin, uint32_t end, const std::array<AxisBins, 3>& axes, BinSet& set) const {
-        for (uint32_t i = begin; i != end; ++i) {
-            const uint32_t p = out_.primIndices[i];
-            for (int a = 0; a < 3; ++a) {
-                if (!axes[a].splittable) continue;
-                Bin& bin = set.bins[a][binOf(centers_[p], a, axes[a])];
-                bin.bounds.grow(bounds_[p]);
-                ++bin.count;
-            }
-        }
-    }
-
-    Split findSahSplit(uint32_t begin, uint32_t end, const Bounds3f& centerBounds) const {
-        const int binCount = config_.binCount;
-        const std::array<AxisBins, 3> axes = {axisBins(centerBounds, 0), axisBins(centerBounds, 1),
-                                              axisBins(centerBounds, 2)};
-        BinSet binSet(binCount);
-        if (end - begin >= kParallelThreshold)
-            binSet = tbb::parallel_reduce(
-                tbb::blocked_range<uint32_t>(begin, end, 4096), BinSet(binCount),
-                [&](const tbb::blocked_range<uint32_t>& r, BinSet acc) {
-                    fillBins(r.begin(), r.end(), axes, acc);
-                    return acc;
-                },
-                [](BinSet a, const BinSet& b) { a.merge(b); return a; });
-        else
-            fillBins(begin, end, axes, binSet);
-
-        Split best;
-        for (int a = 0; a < 3; ++a) {
-            if (!axes[a].splittable) continue;
-            const auto& bins = binSet.bins[a];
-            std::array<float, kMaxBins> rightCost{};
-            Bounds3f acc;
-            uint32_t count = 0;
-            for (int b = binCount - 1; b > 0; --b) {
-                acc.grow(bins[b].bounds);
-                count += bins[b].count;
-                rightCost[b] = acc.area() * blocks(count);
-            }
-            acc = Bounds3f();
-            count = 0;
-            for (int b = 0; b < binCount - 1; ++b) {
-                acc.grow(bins[b].bounds);
-                count += bins[b].count;
-                float cost = acc.area() * blocks(count) + rightCost[b + 1];
-                if (count > 0 && count < end - begin && cost < best.cost) best = {a, b, cost};
-            }
-        }
-        return best;
-    }
-
-    uint32_t partitionAtBin(uint32_t begin, uint32_t end, const Split& split, const Bounds3f& centerBounds) {
-        auto first = out_.primIndices.begin();
-        const AxisBins bins = axisBins(centerBounds, split.axis);
-        auto mid = std::partition(first + begin, first + end, [&](uint32_t p) {
-            return binOf(centers_[p], split.axis, bins) <= split.bin;
-        });
-        return uint32_t(mid - first);
-    }
-
-    uint32_t partitionAtMedian(uint32_t begin, uint32_t end, const Bounds3f& centerBounds) {
-        int axis = centerBounds.largestAxis();
-        uint32_t mid = begin + (end - begin) / 2;
-        auto first = out_.primIndices.begin();
-        std::nth_element(first + begin, first + mid, first + end, [&](uint32_t a, uint32_t b) {
-            float ca = centers_[a][axis], cb = centers_[b][axis];
-            return ca < cb || (ca == cb && a < b);
-        });
-        return mid;
-    }
-
-    void buildNode(uint32_t nodeIndex, uint32_t begin, uint32_t end, int depth) {
-        Bounds3f nodeBounds, centerBounds;
-        rangeBounds(begin, end, nodeBounds, centerBounds);
+    void buildNode(uint32_t nodeIndex, const BuildRange& range, int depth) {
         BinaryNode& node = out_.nodes[nodeIndex];
-        node.bounds = nodeBounds;
-        uint32_t count = end - begin;
-
-        uint32_t mid = begin;
-        if (count == 1) {
-            mid = begin;
-        } else if (config_.split == SplitMethod::Median || depth >= kMedianDepth) {
-            mid = count <= uint32_t(config_.maxLeafSize) ? begin : partitionAtMedian(begin, end, centerBounds);
-        } else {
-            Split split = findSahSplit(begin, end, centerBounds);
-            float leafCost = config_.intersectionCost * blocks(count);
-            float splitCost = split.axis < 0 ? std::numeric_limits<float>::infinity()
-                                             : config_.traversalCost +
-                                                   config_.intersectionCost * split.cost / nodeBounds.area();
-            bool makeLeaf = count <= uint32_t(config_.maxLeafSize) && leafCost <= splitCost;
-            if (!makeLeaf)
-                mid = split.axis >= 0 ? partitionAtBin(begin, end, split, centerBounds)
-                                      : partitionAtMedian(begin, end, centerBounds);
-        }
-
-        if (mid == begin || mid == end) {
-            node.first = begin;
-            node.count = count;
+        node.bounds = range.bounds.bounds();
+        BuildRange left, right;
+        if (!split(range, depth, left, right)) {
+            node.first = range.begin;
+            node.count = range.size();
             return;
         }
-        uint32_t left = nodeCount_.fetch_add(2);
-        node.first = left;
+        shareSpare(range, left, right);
+        const uint32_t child = nodeCount_.fetch_add(2);
+        node.first = child;
         node.count = 0;
-        if (count >= kParallelThreshold)
-            tbb::parallel_invoke([&] { buildNode(left, begin, mid, depth + 1); },
-                                 [&] { buildNode(left + 1, mid, end, depth + 1); });
+        if (range.size() >= kParallelThreshold)
+            tbb::parallel_invoke([&] { buildNode(child, left, depth + 1); },
+                                 [&] { buildNode(child + 1, right, depth + 1); });
         else {
-            buildNode(left, begin, mid, depth + 1);
-            buildNode(left + 1, mid, end, depth + 1);
+            buildNode(child, left, depth + 1);
+            buildNode(child + 1, right, depth + 1);
         }
     }
 
-    std::span<const Bounds3f> bounds_;
-    std::span<const glm::vec3> centers_;
+    /// Splits `range` into two children, or returns false where it becomes a leaf.
+    bool split(const BuildRange& range, int depth, BuildRange& left, BuildRange& right) {
+        const uint32_t count = range.size();
+        if (count == 1) return false;
+        const bool fitsLeaf = count <= uint32_t(config_.maxLeafSize);
+        if (config_.split == SplitMethod::Median || depth >= kMedianDepth) {
+            if (fitsLeaf) return false;
+            splitAtMedian(range, left, right);
+            return true;
+        }
+
+        const ObjectBinMapping objectMapping(range.centroids, count, config_.binCount);
+        ObjectBins objectBins(objectMapping.count);
+        binObjects(range, objectMapping, objectBins);
+        const ObjectSplit object = objectBins.bestSplit(objectMapping, count, blockSize());
+        SpatialSplit spatial;
+        if (splitter_ && range.spare() > 0) {
+            BuildBox overlap = object.left;
+            overlap.intersect(object.right);
+            if (object.axis < 0 || overlap.halfArea() > config_.spatialOverlap * rootHalfArea_) {
+                const SpatialBinMapping spatialMapping(range.bounds, config_.spatialBinCount);
+                SpatialBins spatialBins(spatialMapping.count);
+                binSpatially(range, spatialMapping, spatialBins);
+                spatial = spatialBins.bestSplit(spatialMapping, blockSize());
+                if (spatial.axis >= 0 && spatial.leftCount + spatial.rightCount - count > range.spare()) spatial = {};
+            }
+        }
+
+        const float bestCost = std::min(object.cost, spatial.cost);
+        const float area = range.bounds.halfArea();
+        const float leafCost = config_.intersectionCost * float((count + blockSize() - 1) / blockSize());
+        const float splitCost = bestCost < std::numeric_limits<float>::infinity() && area > 0
+                                    ? config_.traversalCost + config_.intersectionCost * bestCost / area
+                                    : std::numeric_limits<float>::infinity();
+        if (fitsLeaf && leafCost <= splitCost) return false;
+        if (spatial.cost < object.cost) splitSpatially(range, spatial, left, right);
+        else if (object.axis >= 0) splitObjects(range, object, objectMapping, left, right);
+        else splitAtMedian(range, left, right);
+        return true;
+    }
+
+    void binObjects(const BuildRange& range, const ObjectBinMapping& mapping, ObjectBins& bins) const {
+        reduceRange(
+            range.begin, range.end, bins, [&] { return ObjectBins(mapping.count); },
+            [&](ObjectBins& bins, uint32_t from, uint32_t to) { bins.add(refs_.data() + from, to - from, mapping); });
+    }
+
+    void binSpatially(const BuildRange& range, const SpatialBinMapping& mapping, SpatialBins& bins) const {
+        reduceRange(
+            range.begin, range.end, bins, [&] { return SpatialBins(mapping.count); },
+            [&](SpatialBins& bins, uint32_t from, uint32_t to) {
+                bins.add(refs_.data() + from, to - from, mapping, *splitter_);
+            });
+    }
+
+    /// In place, the children's bounds gathered on the way.
+    void splitObjects(const BuildRange& range, const ObjectSplit& split, const ObjectBinMapping& mapping,
+                      BuildRange& left, BuildRange& right) {
+        BuildRef* refs = refs_.data();
+        RangeBounds l, r;
+        auto goesLeft = [&](const BuildRef& ref) { return mapping.binOf(ref, split.axis) <= split.bin; };
+        uint32_t i = range.begin, j = range.end;
+        while (true) {
+            while (i < j && goesLeft(refs[i])) l.add(refs, i, i + 1), ++i;
+            while (i < j && !goesLeft(refs[j - 1])) r.add(refs, j - 1, j), --j;
+            if (i >= j) break;
+            std::swap(refs[i], refs[j - 1]);
+            l.add(refs, i, i + 1), ++i;
+            r.add(refs, j - 1, j), --j;
+        }
+        left = {range.begin, i, i, l.bounds, l.centroids};
+        right = {i, range.end, range.end, r.bounds, r.centroids};
+    }
+
+    void splitAtMedian(const BuildRange& range, BuildRange& left, BuildRange& right) {
+        const int axis = range.centroids.bounds().largestAxis();
+        const uint32_t mid = range.begin + range.size() / 2;
+        BuildRef* refs = refs_.data();
+        std::nth_element(refs + range.begin, refs + mid, refs + range.end, [axis](const BuildRef& a, const BuildRef& b) {
+            const float ca = a.lower[axis] + a.upper[axis], cb = b.lower[axis] + b.upper[axis];
+            return ca < cb || (ca == cb && a.prim < b.prim);
+        });
+        left = measured(range.begin, mid, mid);
+        right = measured(mid, range.end, range.end);
+    }
+
+    /// References wholly below the plane go left, wholly above go right, and the ones across it are
+    /// clipped into a part on each side (the duplicates take spare capacity). Where rounding leaves
+    /// one side empty, the clipped references are split at the median instead.
+    void splitSpatially(const BuildRange& range, const SpatialSplit& split, BuildRange& left, BuildRange& right) {
+        const SpatialBinMapping mapping(range.bounds, config_.spatialBinCount);
+        const float position = mapping.position(split.axis, split.bin + 1);
+        auto binOf = [&](__m128 p) {
+            alignas(16) int32_t bins[4];
+            _mm_store_si128(reinterpret_cast<__m128i*>(bins), mapping.binOf(p));
+            return bins[split.axis];
+        };
+        BuildRef* refs = refs_.data();
+        BuildRef* first = refs + range.begin;
+        BuildRef* end = refs + range.end;
+        BuildRef* across = std::partition(first, end, [&](const BuildRef& r) { return binOf(BuildBox(r).upper) <= split.bin; });
+        BuildRef* above = std::partition(across, end, [&](const BuildRef& r) { return binOf(BuildBox(r).lower) <= split.bin; });
+        const uint32_t crossing = uint32_t(above - across);
+        assert(range.end + crossing <= range.capacityEnd);
+        // Make room after the crossing ones for their upper parts, then clip them.
+        std::move_backward(above, end, end + crossing);
+        BuildRef* lowerParts = across;
+        BuildRef* upperParts = above;
+        for (BuildRef* r = across; r != above; ++r) {
+            const BuildRef ref = *r;
+            BuildBox below, over;
+            splitter_->split(ref.prim, BuildBox(ref), split.axis, position, below, over);
+            if (below.empty() && over.empty()) below = BuildBox(ref);
+            if (!below.empty()) below.storeInto(*lowerParts++ = ref);
+            if (!over.empty()) over.storeInto(*upperParts++ = ref);
+        }
+        // Close the gaps the empty parts left: [first, lowerParts) go left, the upper parts and the
+        // ones above follow.
+        BuildRef* rightEnd = std::move(above + crossing, end + crossing, upperParts);
+        rightEnd = std::move(above, rightEnd, lowerParts);
+        const uint32_t mid = uint32_t(lowerParts - refs), stop = uint32_t(rightEnd - refs);
+        if (mid == range.begin || mid == stop) {
+            BuildRange whole = measured(range.begin, stop, range.capacityEnd);
+            splitAtMedian(whole, left, right);
+            return;
+        }
+        left = measured(range.begin, mid, mid);
+        right = measured(mid, stop, stop);
+    }
+
+    /// Gives each child a share of the parent's spare capacity in proportion to its references: the
+    /// right child's references move up to make room after the left child's.
+    void shareSpare(const BuildRange& parent, BuildRange& left, BuildRange& right) {
+        const uint32_t spare = parent.capacityEnd - right.end;
+        const uint32_t leftSpare = uint32_t(uint64_t(spare) * left.size() / (left.size() + right.size()));
+        if (leftSpare > 0) {
+            BuildRef* refs = refs_.data();
+            std::move_backward(refs + right.begin, refs + right.end, refs + right.end + leftSpare);
+            right.begin += leftSpare;
+            right.end += leftSpare;
+        }
+        left.capacityEnd = right.begin;
+        right.capacityEnd = parent.capacityEnd;
+    }
+
+    /// primIndices from the leaves in depth-first order, so that every subtree's primitives are
+    /// contiguous (spatial splits leave unused capacity between the ranges).
+    void gatherLeaves() {
+        out_.primIndices.clear();
+        out_.primIndices.reserve(refs_.size());
+        gather(0);
+    }
+
+    void gather(uint32_t nodeIndex) {
+        BinaryNode& node = out_.nodes[nodeIndex];
+        if (!node.isLeaf()) {
+            gather(node.first);
+            gather(node.first + 1);
+            return;
+        }
+        const uint32_t first = uint32_t(out_.primIndices.size());
+        for (uint32_t i = node.first; i != node.first + node.count; ++i) out_.primIndices.push_back(refs_[i].prim);
+        node.first = first;
+    }
+
+    std::vector<BuildRef>& refs_;
     const BvhBuildConfig& config_;
+    const TriangleSplitter* splitter_;
     BinaryBvh& out_;
     std::atomic<uint32_t> nodeCount_{0};
+    float rootHalfArea_ = 0;
 };
 
 } // namespace
 
-BinaryBvh buildBinaryBvh(std::span<const Bounds3f> primBounds, std::span<const glm::vec3> centers,
-                         const BvhBuildConfig& config) {
-    assert(primBounds.size() == centers.size() && !primBounds.empty());
-    assert(config.binCount >= 2 && config.binCount <= kMaxBins);
+BinaryBvh buildBinaryBvh(std::vector<BuildRef> refs, const BvhBuildConfig& config, const TriangleSplitter* splitter) {
+    assert(!refs.empty());
+    assert(config.binCount >= 2 && config.binCount <= kMaxObjectBins);
+    assert(config.spatialBinCount >= 2 && config.spatialBinCount <= kMaxSpatialBins);
     BinaryBvh bvh;
-    Builder(primBounds, centers, config, bvh).build();
+    Builder(refs, config, splitter, bvh).build();
     return bvh;
 }
 

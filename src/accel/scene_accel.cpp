@@ -1,11 +1,14 @@
 #include "accel/scene_accel.h"
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <string>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
+
+#include "accel/triangle_splitter.h"
 
 namespace wideray {
 namespace {
@@ -60,21 +63,19 @@ WideBvh<N> joinBvhs(WideBvh<N> a, WideBvh<N> b) {
 
 } // namespace
 
-void triangleBounds(const TriangleMesh& mesh, std::vector<Bounds3f>& bounds, std::vector<glm::vec3>& centers) {
-    size_t n = mesh.triangles.size();
-    bounds.resize(n);
-    centers.resize(n);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+std::vector<BuildRef> triangleRefs(const TriangleMesh& mesh) {
+    std::vector<BuildRef> refs(mesh.triangles.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, refs.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
             const glm::uvec3& t = mesh.triangles[i];
             Bounds3f b;
             b.grow(mesh.positions[t.x]);
             b.grow(mesh.positions[t.y]);
             b.grow(mesh.positions[t.z]);
-            bounds[i] = b;
-            centers[i] = b.center();
+            refs[i] = makeBuildRef(b, uint32_t(i));
         }
     });
+    return refs;
 }
 
 template <int N>
@@ -101,15 +102,22 @@ WideBvh<N> SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuil
         throw std::length_error("SceneAccel: more triangles than the BVH's leaves can address (" +
                                 std::to_string(NodeRef::kFirstMask) + " blocks of " + std::to_string(kBlockSize) + ")");
     auto start = std::chrono::steady_clock::now();
-    std::vector<Bounds3f> bounds;
-    std::vector<glm::vec3> centers;
-    triangleBounds(mesh, bounds, centers);
-    BinaryBvh binary = buildBinaryBvh(bounds, centers, config);
+    const TriangleSplitter splitter(mesh);
+    BinaryBvh binary = buildBinaryBvh(triangleRefs(mesh), config, &splitter);
     timings_.binarySeconds += secondsSince(start);
 
     start = std::chrono::steady_clock::now();
     blocks_.reserve(mesh.triangles.size() / 2);
+    std::vector<uint32_t> unique;
     LeafEmitter emit = [&](std::span<const uint32_t> prims, uint32_t& count) {
+        if (config.quality == BuildQuality::High) {
+            // Spatial splits put parts of one triangle in sibling leaves, which the collapse may merge.
+            unique.assign(prims.begin(), prims.end());
+            std::sort(unique.begin(), unique.end());
+            unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
+            prims = unique;
+        }
+        triangleReferences_ += prims.size();
         uint32_t first = uint32_t(blocks_.size());
         count = uint32_t((prims.size() + kBlockSize - 1) / kBlockSize);
         for (size_t base = 0; base < prims.size(); base += kBlockSize) {
@@ -135,21 +143,19 @@ WideBvh<N> SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuil
 
 template <int N>
 WideBvh<N> SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
-    std::vector<Bounds3f> bounds;
-    std::vector<glm::vec3> centers;
+    std::vector<BuildRef> buildRefs;
     std::vector<PrimRef> refs;
     for (uint32_t g = 0; g < userGeometries_.size(); ++g)
         for (uint32_t p = 0; userGeometries_[g] && p < userGeometries_[g]->primitiveCount(); ++p) {
+            buildRefs.push_back(makeBuildRef(userGeometries_[g]->primitiveBounds(p), uint32_t(refs.size())));
             refs.push_back({g, p});
-            bounds.push_back(userGeometries_[g]->primitiveBounds(p));
-            centers.push_back(bounds.back().center());
         }
     if (refs.empty()) return {};
     if (refs.size() >= NodeRef::kFirstMask) throw std::length_error("SceneAccel: too many user primitives");
     auto start = std::chrono::steady_clock::now();
     BvhBuildConfig userConfig = config;
     userConfig.blockSize = 1;
-    BinaryBvh binary = buildBinaryBvh(bounds, centers, userConfig);
+    BinaryBvh binary = buildBinaryBvh(std::move(buildRefs), userConfig);
     LeafEmitter emit = [&](std::span<const uint32_t> leafPrims, uint32_t& count) {
         uint32_t first = uint32_t(prims_.size());
         for (uint32_t p : leafPrims) prims_.push_back(refs[p]);

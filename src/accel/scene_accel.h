@@ -34,6 +34,8 @@ public:
     const std::vector<TriangleBlock<kBlockSize>>& blocks() const { return blocks_; }
     const SceneGeometry& geometry() const { return *geometry_; }
     const BuildTimings& timings() const { return timings_; }
+    /// Triangles in leaf blocks: the triangle count, more where spatial splits put one in several leaves.
+    size_t triangleReferences() const { return triangleReferences_; }
     size_t bytes() const;
 
 private:
@@ -46,9 +48,10 @@ private:
     std::shared_ptr<const SceneGeometry> geometry_;
     std::vector<const UserGeometry*> userGeometries_;  ///< indexed by geomId; null for triangle meshes
     BuildTimings timings_;
+    size_t triangleReferences_ = 0;
 };
 
-/// Bounds and centers of a mesh's triangles, the builder's input.
-void triangleBounds(const TriangleMesh& mesh, std::vector<Bounds3f>& bounds, std::vector<glm::vec3>& centers);
+/// One build reference per triangle of the mesh, the builder's input.
+std::vector<BuildRef> triangleRefs(const TriangleMesh& mesh);
 
 } // namespace wideray

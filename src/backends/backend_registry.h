@@ -11,8 +11,10 @@
 namespace wideray {
 
 struct StructureOptions {
-    int bvhWidth = 8;              ///< wideray: children per node, 4 or 8
-    std::string quality = "medium";  ///< embree: low, medium or high (RTC_BUILD_QUALITY_*)
+    int bvhWidth = 8;  ///< wideray: children per node, 4 or 8
+    /// wideray: fast (object splits) or high (spatial splits too); embree: low, medium or high
+    /// (RTC_BUILD_QUALITY_*), fast meaning medium. Empty: the backend's default (fast, medium).
+    std::string quality;
 };
 
 struct Backend {

@@ -96,10 +96,11 @@ std::unique_ptr<Tracer> EmbreeStructure::tracer(const KernelChoice& choice) cons
 std::shared_ptr<const Structure> buildEmbree(std::shared_ptr<const SceneGeometry> geometry,
                                              const StructureOptions& options) {
     const std::pair<const char*, RTCBuildQuality> qualities[] = {
-        {"low", RTC_BUILD_QUALITY_LOW}, {"medium", RTC_BUILD_QUALITY_MEDIUM}, {"high", RTC_BUILD_QUALITY_HIGH}};
+        {"low", RTC_BUILD_QUALITY_LOW},       {"medium", RTC_BUILD_QUALITY_MEDIUM}, {"", RTC_BUILD_QUALITY_MEDIUM},
+        {"fast", RTC_BUILD_QUALITY_MEDIUM}, {"high", RTC_BUILD_QUALITY_HIGH}};
     for (const auto& [name, quality] : qualities)
         if (options.quality == name) return std::make_shared<EmbreeStructure>(std::move(geometry), quality);
-    throw InputError("--quality", "", "Embree's build quality is low, medium or high, not '" + options.quality + "'");
+    throw InputError("--quality", "", "Embree's build quality is low, medium (or fast) or high, not '" + options.quality + "'");
 }
 
 } // namespace wideray

@@ -21,8 +21,15 @@ Isa chosenIsa(const KernelChoice& choice) {
 } // namespace
 
 template <int N>
-WideBvhStructure<N>::WideBvhStructure(std::shared_ptr<const SceneGeometry> geometry)
-    : Structure(geometry), accel_(std::move(geometry)) {}
+BvhBuildConfig buildConfig(BuildQuality quality) {
+    BvhBuildConfig config = SceneAccel<N>::defaultConfig();
+    config.quality = quality;
+    return config;
+}
+
+template <int N>
+WideBvhStructure<N>::WideBvhStructure(std::shared_ptr<const SceneGeometry> geometry, BuildQuality quality)
+    : Structure(geometry), quality_(quality), accel_(std::move(geometry), buildConfig<N>(quality)) {}
 
 template <int N>
 std::string WideBvhStructure<N>::summary() const {
@@ -31,12 +38,13 @@ std::string WideBvhStructure<N>::summary() const {
     const double bytesPerTriangle = triangles == 0 ? 0.0 : double(bytes()) / double(triangles);
     const BuildTimings& t = accel_.timings();
     const size_t blocks = accel_.blocks().size();
-    const double blockFill = blocks ? double(triangles) / double(blocks * kBlockSize) : 0.0;
-    return fmt::format("BVH{}: {} inner nodes ({:.2f} of {} children each), {} leaves ({} blocks of {} triangles, "
-                       "{:.0f}% full), depth {}, SAH cost {:.2f}, {:.1f} bytes/triangle, build {:.1f} ms (binned SAH "
-                       "{:.1f} ms + collapse {:.1f} ms)",
-                       N, s.innerNodes, s.childrenPerNode(), N, s.leaves, blocks, kBlockSize, 100.0 * blockFill,
-                       s.depth, s.sahCost, bytesPerTriangle, t.totalSeconds() * 1e3, t.binarySeconds * 1e3,
+    const uint64_t references = accel_.triangleReferences();
+    const double blockFill = blocks ? double(references) / double(blocks * kBlockSize) : 0.0;
+    return fmt::format("BVH{} ({} quality): {} inner nodes ({:.2f} of {} children each), {} leaves ({} blocks of {} triangles, "
+                       "{:.0f}% full), {:.3f} references per triangle, depth {}, SAH cost {:.2f}, {:.1f} "
+                       "bytes/triangle, build {:.1f} ms (binned SAH {:.1f} ms + collapse {:.1f} ms)",
+                       N, qualityName(), s.innerNodes, s.childrenPerNode(), N, s.leaves, blocks, kBlockSize, 100.0 * blockFill,
+                       triangles ? double(references) / double(triangles) : 0.0, s.depth, s.sahCost, bytesPerTriangle, t.totalSeconds() * 1e3, t.binarySeconds * 1e3,
                        t.collapseSeconds * 1e3);
 }
 
@@ -73,8 +81,12 @@ std::unique_ptr<Tracer> WideBvhStructure<N>::tracer(const KernelChoice& choice) 
 
 std::shared_ptr<const Structure> buildWideBvh(std::shared_ptr<const SceneGeometry> geometry,
                                               const StructureOptions& options) {
-    if (options.bvhWidth == 4) return std::make_shared<WideBvhStructure<4>>(std::move(geometry));
-    if (options.bvhWidth == 8) return std::make_shared<WideBvhStructure<8>>(std::move(geometry));
+    BuildQuality quality;
+    if (options.quality.empty() || options.quality == "fast") quality = BuildQuality::Fast;
+    else if (options.quality == "high") quality = BuildQuality::High;
+    else throw InputError("--quality", "", "our build quality is fast or high, not '" + options.quality + "'");
+    if (options.bvhWidth == 4) return std::make_shared<WideBvhStructure<4>>(std::move(geometry), quality);
+    if (options.bvhWidth == 8) return std::make_shared<WideBvhStructure<8>>(std::move(geometry), quality);
     throw InputError("--bvh-width", "", "the BVH width must be 4 or 8");
 }
 

@@ -12,10 +12,12 @@ namespace wideray {
 template <int N>
 class WideBvhStructure final : public Structure {
 public:
-    explicit WideBvhStructure(std::shared_ptr<const SceneGeometry> geometry);
+    explicit WideBvhStructure(std::shared_ptr<const SceneGeometry> geometry, BuildQuality quality = BuildQuality::Fast);
 
     const SceneAccel<N>& accel() const { return accel_; }
     std::string name() const override { return "BVH" + std::to_string(N); }
+    BuildQuality quality() const { return quality_; }
+    const char* qualityName() const { return quality_ == BuildQuality::High ? "high" : "fast"; }
     double buildSeconds() const override { return accel_.timings().totalSeconds(); }
     size_t bytes() const override { return accel_.bytes(); }
     std::string summary() const override;
@@ -24,10 +26,11 @@ public:
     std::unique_ptr<Tracer> tracer(const KernelChoice& choice) const override;
 
 private:
+    BuildQuality quality_;
     SceneAccel<N> accel_;
 };
 
-/// The backend row's build function: BVH4 or BVH8 as options.bvhWidth says.
+/// The backend row's build function: BVH4 or BVH8 as options.bvhWidth says, fast or high quality.
 std::shared_ptr<const Structure> buildWideBvh(std::shared_ptr<const SceneGeometry> geometry,
                                               const StructureOptions& options);
 

@@ -36,6 +36,7 @@ struct BenchArgs {
     std::vector<std::string> kinds{"primary", "shadow", "diffuse"};
     bool allIsas = false;
     std::string backend = "both";
+    std::string quality = "fast";  ///< our builds: fast, high or both
 };
 
 /// One way of tracing a batch: closest hits (hits != null) or occlusion.
@@ -43,7 +44,7 @@ using TraceFn = std::function<void(const Ray* rays, size_t count, Hit* hits, uin
 
 struct Candidate {
     std::string backend, kernel, isa;
-    std::string quality;      ///< the build it traces: ours "fast"; Embree's "medium" or "high"
+    std::string quality;      ///< the build it traces: ours "fast" or "high"; Embree's "medium" or "high"
     std::string counterpart;  ///< the Embree kernel ours is compared with
     TraceFn trace;
 };
@@ -79,7 +80,7 @@ Measurement measure(const Candidate& c, const std::vector<Ray>& rays, bool anyHi
 }
 
 template <int N>
-std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, bool allIsas) {
+std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, const std::string& quality, bool allIsas) {
     std::vector<Candidate> out;
     SceneView<N> view = accel.view();
     for (Isa isa : {Isa::Sse42, Isa::Avx2, Isa::Avx512}) {
@@ -92,10 +93,10 @@ std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, bool allIsas) {
                 if (h) k.intersect(view, r, h, n, nullptr);
                 else k.occluded(view, r, o, n);
             };
-            out.push_back({"wideray", k.name, reference ? "baseline" : isaName(isa), "fast", k.embreeCounterpart, trace});
+            out.push_back({"wideray", k.name, reference ? "baseline" : isaName(isa), quality, k.embreeCounterpart, trace});
             // The shadow cache: one per task, so that each chunk of rays starts cold (as a renderer tile would).
             if (k.occludedCached)
-                out.push_back({"wideray", std::string(k.name) + "+cache", isaName(isa), "fast", k.embreeCounterpart,
+                out.push_back({"wideray", std::string(k.name) + "+cache", isaName(isa), quality, k.embreeCounterpart,
                                [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
                                    if (h) return;
                                    ShadowCache cache;
@@ -137,11 +138,18 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
     const std::string workload = isSceneFile(input) ? "scene" : "framed";
     fmt::print(stderr, "{}: {} triangles, building BVHs...\n", name, geometry->triangleCount());
 
-    // Each structure is built once: ours, and Embree at medium and high quality.
+    // Each structure is built once: ours (fast, high or both), and Embree at medium and high quality.
     // Our kernels are called directly on the BVH's view (the shadow-cache candidate needs a cache per task).
-    auto ours = std::static_pointer_cast<const WideBvhStructure<8>>(findBackend("wideray").build(geometry, StructureOptions{}));
-    builds.push_back({{"scene", name}, {"backend", "wideray"}, {"quality", "fast"}, {"layout", ours->name()},
-                      {"seconds", ours->buildSeconds()}, {"bytes", ours->bytes()}});
+    std::vector<std::shared_ptr<const WideBvhStructure<8>>> ours;
+    for (const char* quality : {"fast", "high"}) {
+        if (args.quality != quality && args.quality != "both") continue;
+        StructureOptions options;
+        options.quality = quality;
+        ours.push_back(std::static_pointer_cast<const WideBvhStructure<8>>(findBackend("wideray").build(geometry, options)));
+        builds.push_back({{"scene", name}, {"backend", "wideray"}, {"quality", quality}, {"layout", ours.back()->name()},
+                          {"seconds", ours.back()->buildSeconds()}, {"bytes", ours.back()->bytes()},
+                          {"references", ours.back()->accel().triangleReferences()}});
+    }
     std::vector<std::pair<std::string, std::shared_ptr<const Structure>>> embree;
     for (const char* quality : {"medium", "high"}) {
         StructureOptions options;
@@ -155,11 +163,14 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
             fmt::print("{}: build {} {}: {:.1f} ms, {:.1f} MB\n", name, std::string(b["backend"]),
                        std::string(b["quality"]), double(b["seconds"]) * 1e3, double(b["bytes"]) / 1e6);
 
-    BenchRays rays = makeBenchRays(scene, *ours->tracer({"scalar"}), width, height);
+    BenchRays rays = makeBenchRays(scene, *ours.front()->tracer({"scalar"}), width, height);
 
     // Embree's kernels are measured on both of its builds; ours are compared with the faster.
     std::vector<Candidate> candidates;
-    if (args.backend != "embree") candidates = ourCandidates(ours->accel(), args.allIsas);
+    if (args.backend != "embree")
+        for (const auto& structure : ours)
+            for (Candidate& c : ourCandidates(structure->accel(), structure->qualityName(), args.allIsas))
+                candidates.push_back(std::move(c));
     if (args.backend != "wideray")
         for (const auto& [quality, structure] : embree)
             for (Candidate& c : embreeCandidates(*structure, quality)) candidates.push_back(std::move(c));
@@ -220,6 +231,11 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         ->delimiter(',');
     cmd->add_option("--backend", args->backend, "Whose kernels to measure: wideray, embree or both")
         ->check(CLI::IsMember({"wideray", "embree", "both"}))
+        ->capture_default_str();
+    cmd->add_option("--quality", args->quality,
+                    "Our builds to measure: fast, high (spatial splits) or both (Embree is always measured at "
+                    "medium and high)")
+        ->check(CLI::IsMember({"fast", "high", "both"}))
         ->capture_default_str();
     cmd->add_flag("--all-isas", args->allIsas, "Measure our kernels for every ISA this CPU has, not only the best");
     cmd->add_option("--json", args->json, "Write the results as JSON (fields: machine, results, builds)");

@@ -10,16 +10,19 @@
 
 namespace wideray::cli {
 
-/// Options shared by render and bench: threads, the kernel and its ISA, the BVH width.
+/// Options of render: threads, the kernel and its ISA, the BVH's width and build quality.
 struct EngineOptions {
     int threads = 0;  ///< 0: all hardware threads
     std::string kernel = "auto";
     std::string isa = "auto";
     int bvhWidth = 8;
+    std::string quality = "fast";
     std::string shadowCache = "on";
 };
 
 void addEngineOptions(CLI::App& app, EngineOptions& options);
+/// --quality fast|high.
+void addQualityOption(CLI::App& app, std::string& quality);
 /// The kernels the options ask for.
 KernelChoice kernelChoice(const EngineOptions& options);
 

@@ -35,6 +35,15 @@ void addEngineOptions(CLI::App& app, EngineOptions& options) {
     app.add_option("--bvh-width", options.bvhWidth, "Children per BVH node: 4 or 8")
         ->check(CLI::IsMember({4, 8}))
         ->capture_default_str();
+    addQualityOption(app, options.quality);
+}
+
+void addQualityOption(CLI::App& app, std::string& quality) {
+    app.add_option("--quality", quality,
+                   "BVH build: fast (binned SAH over objects) or high (spatial splits too: slower to build, "
+                   "faster to trace); with --backend embree, Embree's medium or high quality")
+        ->check(CLI::IsMember({"fast", "high"}))
+        ->capture_default_str();
 }
 
 KernelChoice kernelChoice(const EngineOptions& options) {

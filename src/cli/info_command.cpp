@@ -13,13 +13,15 @@ namespace wideray::cli {
 void addInfoCommand(CLI::App& app, int& exitCode) {
     auto files = std::make_shared<std::vector<std::string>>();
     auto isa = std::make_shared<std::string>("auto");
+    auto quality = std::make_shared<std::string>("fast");
     CLI::App* cmd = app.add_subcommand("info", "Print triangles, BVH shape, SAH cost, memory and build time of "
                                                "scenes or meshes, and the detected and chosen ISA");
     cmd->add_option("files", *files, "Scene files or meshes")->required();
     cmd->add_option("--isa", *isa, "The ISA to report as chosen: sse42, avx2, avx512 or auto")
         ->check(CLI::IsMember({"sse42", "avx2", "avx512", "auto"}))
         ->capture_default_str();
-    cmd->callback([files, isa, &exitCode] {
+    addQualityOption(*cmd, *quality);
+    cmd->callback([files, isa, quality, &exitCode] {
         FlushToZeroScope ftz;
         Isa chosen = *isa == "auto" ? bestIsa() : *parseIsa(*isa);
         fmt::print("CPU: {}; detected ISA: {}; chosen ISA: {}{}\n", cpuModelName(), isaName(bestIsa()),
@@ -38,6 +40,7 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
                 for (int width : {4, 8}) {
                     StructureOptions options;
                     options.bvhWidth = width;
+                    options.quality = *quality;
                     fmt::print("{}\n", ours.build(geometry, options)->summary());
                 }
             } catch (const std::exception& e) {

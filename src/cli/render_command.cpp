@@ -65,6 +65,7 @@ BackendTracer buildTracer(const RenderArgs& args, const std::string& backendName
                           std::shared_ptr<const SceneGeometry> geometry) {
     StructureOptions options;
     options.bvhWidth = args.engine.bvhWidth;
+    options.quality = args.engine.quality;
     std::shared_ptr<const Structure> structure = findBackend(backendName).build(std::move(geometry), options);
     // --kernel, --isa and --bvh-width choose among our kernels; Embree traces with its own choice.
     std::unique_ptr<Tracer> tracer = structure->tracer(backendName == "wideray" ? kernelChoice(args.engine) : KernelChoice{});

@@ -1,0 +1,78 @@
+#pragma once
+// What the BVH builders sort: one reference per primitive (more than one where spatial splits clip
+// it), 32 bytes, its box loaded as two SSE registers. The builders' arithmetic is on BuildBox.
+#include <nmmintrin.h>
+
+#include <cstdint>
+#include <limits>
+
+#include "core/bounds.h"
+
+namespace wideray {
+
+struct alignas(16) BuildRef {
+    glm::vec3 lower;
+    uint32_t prim;  ///< the primitive's index in the builder's input
+    glm::vec3 upper;
+    uint32_t unused = 0;
+};
+static_assert(sizeof(BuildRef) == 32);
+
+/// A box in two SSE registers; the fourth lane is not part of it (it may hold anything).
+struct BuildBox {
+    __m128 lower = _mm_set1_ps(std::numeric_limits<float>::infinity());
+    __m128 upper = _mm_set1_ps(-std::numeric_limits<float>::infinity());
+
+    BuildBox() = default;
+    BuildBox(__m128 lo, __m128 hi) : lower(lo), upper(hi) {}
+    explicit BuildBox(const BuildRef& r) : lower(_mm_load_ps(&r.lower.x)), upper(_mm_load_ps(&r.upper.x)) {}
+
+    void grow(const BuildBox& b) { lower = _mm_min_ps(lower, b.lower); upper = _mm_max_ps(upper, b.upper); }
+    void grow(__m128 p) { lower = _mm_min_ps(lower, p); upper = _mm_max_ps(upper, p); }
+    void intersect(const BuildBox& b) { lower = _mm_max_ps(lower, b.lower); upper = _mm_min_ps(upper, b.upper); }
+
+    /// Twice the center, the builders' centroid (no multiply needed to bin it).
+    __m128 center2() const { return _mm_add_ps(lower, upper); }
+
+    bool empty() const { return (_mm_movemask_ps(_mm_cmpgt_ps(lower, upper)) & 7) != 0; }
+
+    /// Half the surface area, 0 when empty: the SAH's measure (only ratios of it matter).
+    float halfArea() const {
+        if (empty()) return 0.0f;
+        const __m128 e = _mm_sub_ps(upper, lower);
+        const __m128 rotated = _mm_shuffle_ps(e, e, _MM_SHUFFLE(3, 0, 2, 1));  // (y, z, x)
+        const __m128 p = _mm_mul_ps(e, rotated);                               // (xy, yz, zx)
+        alignas(16) float v[4];
+        _mm_store_ps(v, p);
+        return v[0] + v[1] + v[2];
+    }
+
+    float lowerAt(int axis) const { return lane(lower, axis); }
+    float upperAt(int axis) const { return lane(upper, axis); }
+
+    Bounds3f bounds() const {
+        alignas(16) float lo[4], hi[4];
+        _mm_store_ps(lo, lower);
+        _mm_store_ps(hi, upper);
+        return {{lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}};
+    }
+
+    /// Writes the box into a reference, keeping its primitive.
+    void storeInto(BuildRef& r) const {
+        const uint32_t prim = r.prim;
+        _mm_store_ps(&r.lower.x, lower);
+        _mm_store_ps(&r.upper.x, upper);
+        r.prim = prim;
+        r.unused = 0;
+    }
+
+    static float lane(__m128 v, int i) {
+        alignas(16) float f[4];
+        _mm_store_ps(f, v);
+        return f[i];
+    }
+};
+
+inline BuildRef makeBuildRef(const Bounds3f& b, uint32_t prim) { return {b.lower, prim, b.upper, 0}; }
+
+} // namespace wideray

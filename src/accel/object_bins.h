@@ -1,0 +1,126 @@
+#pragma once
+// Binned SAH over object splits (Wald 2007, "On fast construction of SAH-based bounding volume
+// hierarchies"): references are binned by centroid along all three axes at once, and a sweep over the
+// bins finds the split plane of least SAH cost.
+#include <algorithm>
+#include <array>
+
+#include "accel/build_ref.h"
+
+namespace wideray {
+
+constexpr int kMaxObjectBins = 64;
+
+/// The SAH cost of `count` primitives in a box of half area `halfArea`, intersected in blocks.
+inline float sideCost(float halfArea, uint32_t count, uint32_t blockSize) {
+    return halfArea * float((count + blockSize - 1) / blockSize);
+}
+
+/// How centroids map to bins along each axis: bin = (center2 - offset) * scale, clamped. Fewer bins
+/// for fewer references (as Embree does): small nodes cost a short sweep, not a long one.
+struct ObjectBinMapping {
+    int count = 0;
+    __m128 offset, scale;
+    int splittableAxes = 0;  ///< bit a: the centroids spread along axis a
+
+    ObjectBinMapping(const BuildBox& centroids, uint32_t refCount, int maxBins) {
+        count = std::clamp(int(4.0f + 0.05f * float(refCount)), 2, maxBins);
+        offset = centroids.lower;
+        const __m128 extent = _mm_sub_ps(centroids.upper, centroids.lower);
+        const __m128 spread = _mm_cmpgt_ps(extent, _mm_setzero_ps());
+        // The 0.99999 keeps the largest centroid inside the last bin despite rounding.
+        scale = _mm_and_ps(spread, _mm_div_ps(_mm_set1_ps(0.99999f * float(count)), extent));
+        splittableAxes = _mm_movemask_ps(spread) & 7;
+    }
+
+    bool splittable(int axis) const { return splittableAxes >> axis & 1; }
+
+    __m128i binOf(__m128 center2) const {
+        const __m128i bin = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(center2, offset), scale));
+        return _mm_min_epi32(_mm_max_epi32(bin, _mm_setzero_si128()), _mm_set1_epi32(count - 1));
+    }
+
+    int binOf(const BuildRef& ref, int axis) const {
+        alignas(16) int32_t bins[4];
+        _mm_store_si128(reinterpret_cast<__m128i*>(bins), binOf(BuildBox(ref).center2()));
+        return bins[axis];
+    }
+};
+
+/// The best object split: references whose centroid bin along `axis` is <= `bin` go left.
+struct ObjectSplit {
+    int axis = -1;
+    int bin = 0;
+    float cost = std::numeric_limits<float>::infinity();  ///< sum of both sides' sideCost
+    BuildBox left, right;
+};
+
+struct ObjectBins {
+    // Raw registers rather than BuildBox, so that only the bins in use are ever initialized.
+    __m128 lower[3][kMaxObjectBins], upper[3][kMaxObjectBins];
+    alignas(16) uint32_t counts[kMaxObjectBins][4];  ///< counts[bin][axis]
+    int count;
+
+    explicit ObjectBins(int binCount) : count(binCount) {
+        for (int b = 0; b < count; ++b) {
+            for (int a = 0; a < 3; ++a) {
+                lower[a][b] = BuildBox().lower;
+                upper[a][b] = BuildBox().upper;
+            }
+            _mm_store_si128(reinterpret_cast<__m128i*>(counts[b]), _mm_setzero_si128());
+        }
+    }
+
+    BuildBox box(int axis, int bin) const { return {lower[axis][bin], upper[axis][bin]}; }
+
+    void add(const BuildRef* refs, size_t refCount, const ObjectBinMapping& mapping) {
+        for (size_t i = 0; i < refCount; ++i) {
+            const BuildBox box(refs[i]);
+            alignas(16) int32_t bins[4];
+            _mm_store_si128(reinterpret_cast<__m128i*>(bins), mapping.binOf(box.center2()));
+            for (int a = 0; a < 3; ++a) {
+                lower[a][bins[a]] = _mm_min_ps(lower[a][bins[a]], box.lower);
+                upper[a][bins[a]] = _mm_max_ps(upper[a][bins[a]], box.upper);
+                ++counts[bins[a]][a];
+            }
+        }
+    }
+
+    void merge(const ObjectBins& other) {
+        for (int b = 0; b < count; ++b)
+            for (int a = 0; a < 3; ++a) {
+                lower[a][b] = _mm_min_ps(lower[a][b], other.lower[a][b]);
+                upper[a][b] = _mm_max_ps(upper[a][b], other.upper[a][b]);
+                counts[b][a] += other.counts[b][a];
+            }
+    }
+
+    ObjectSplit bestSplit(const ObjectBinMapping& mapping, uint32_t refCount, uint32_t blockSize) const {
+        ObjectSplit best;
+        for (int a = 0; a < 3; ++a) {
+            if (!mapping.splittable(a)) continue;
+            std::array<float, kMaxObjectBins> rightCost;
+            BuildBox acc;
+            uint32_t n = 0;
+            for (int b = count - 1; b > 0; --b) {
+                acc.grow(box(a, b));
+                n += counts[b][a];
+                rightCost[b] = sideCost(acc.halfArea(), n, blockSize);
+            }
+            acc = BuildBox();
+            n = 0;
+            for (int b = 0; b < count - 1; ++b) {
+                acc.grow(box(a, b));
+                n += counts[b][a];
+                if (n == 0 || n == refCount) continue;
+                const float cost = sideCost(acc.halfArea(), n, blockSize) + rightCost[b + 1];
+                if (cost < best.cost) best = {a, b, cost, {}, {}};
+            }
+        }
+        if (best.axis >= 0)
+            for (int b = 0; b < count; ++b) (b <= best.bin ? best.left : best.right).grow(box(best.axis, b));
+        return best;
+    }
+};
+
+} // namespace wideray

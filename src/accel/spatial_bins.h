@@ -1,0 +1,134 @@
+#pragma once
+// Spatial splits (Stich, Friedrich and Dietrich 2009, "Spatial Splits in Bounding Volume
+// Hierarchies"): the node's box is cut into bins of equal width along each axis, every reference is
+// clipped into each bin it overlaps, and a sweep finds the plane of least SAH cost counting the
+// references that straddle it on both sides.
+#include <algorithm>
+#include <array>
+
+#include "accel/object_bins.h"
+#include "accel/triangle_splitter.h"
+
+namespace wideray {
+
+constexpr int kMaxSpatialBins = 32;
+
+/// Bins of equal width over the node's box: bin = (x - offset) * scale, clamped; bin b's lower plane
+/// is position(axis, b).
+struct SpatialBinMapping {
+    int count = 0;
+    __m128 offset, scale, width;
+    int splittableAxes = 0;
+
+    SpatialBinMapping(const BuildBox& bounds, int binCount) : count(binCount) {
+        offset = bounds.lower;
+        const __m128 extent = _mm_sub_ps(bounds.upper, bounds.lower);
+        const __m128 spread = _mm_cmpgt_ps(extent, _mm_setzero_ps());
+        scale = _mm_and_ps(spread, _mm_div_ps(_mm_set1_ps(float(count)), extent));
+        width = _mm_mul_ps(extent, _mm_set1_ps(1.0f / float(count)));
+        splittableAxes = _mm_movemask_ps(spread) & 7;
+    }
+
+    bool splittable(int axis) const { return splittableAxes >> axis & 1; }
+
+    __m128i binOf(__m128 p) const {
+        const __m128i bin = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(p, offset), scale));
+        return _mm_min_epi32(_mm_max_epi32(bin, _mm_setzero_si128()), _mm_set1_epi32(count - 1));
+    }
+
+    float position(int axis, int bin) const {
+        return BuildBox::lane(offset, axis) + float(bin) * BuildBox::lane(width, axis);
+    }
+};
+
+/// The best spatial split: the plane between bins `bin` and `bin + 1` along `axis`.
+struct SpatialSplit {
+    int axis = -1;
+    int bin = 0;
+    float cost = std::numeric_limits<float>::infinity();
+    uint32_t leftCount = 0, rightCount = 0;  ///< their sum exceeds the node's count by the duplicates
+};
+
+struct SpatialBins {
+    __m128 lower[3][kMaxSpatialBins], upper[3][kMaxSpatialBins];  // raw, as in ObjectBins
+    alignas(16) uint32_t enter[kMaxSpatialBins][4];  ///< [bin][axis]: references starting there
+    alignas(16) uint32_t exit[kMaxSpatialBins][4];   ///< [bin][axis]: references ending there
+    int count;
+
+    explicit SpatialBins(int binCount) : count(binCount) {
+        for (int b = 0; b < count; ++b) {
+            for (int a = 0; a < 3; ++a) {
+                lower[a][b] = BuildBox().lower;
+                upper[a][b] = BuildBox().upper;
+            }
+            _mm_store_si128(reinterpret_cast<__m128i*>(enter[b]), _mm_setzero_si128());
+            _mm_store_si128(reinterpret_cast<__m128i*>(exit[b]), _mm_setzero_si128());
+        }
+    }
+
+    BuildBox box(int axis, int bin) const { return {lower[axis][bin], upper[axis][bin]}; }
+    void grow(int axis, int bin, const BuildBox& box) {
+        lower[axis][bin] = _mm_min_ps(lower[axis][bin], box.lower);
+        upper[axis][bin] = _mm_max_ps(upper[axis][bin], box.upper);
+    }
+
+    void add(const BuildRef* refs, size_t refCount, const SpatialBinMapping& mapping, const TriangleSplitter& splitter) {
+        for (size_t i = 0; i < refCount; ++i) {
+            const BuildBox box(refs[i]);
+            alignas(16) int32_t first[4], last[4];
+            _mm_store_si128(reinterpret_cast<__m128i*>(first), mapping.binOf(box.lower));
+            _mm_store_si128(reinterpret_cast<__m128i*>(last), mapping.binOf(box.upper));
+            for (int a = 0; a < 3; ++a) {
+                if (!mapping.splittable(a)) continue;
+                ++enter[first[a]][a];
+                ++exit[last[a]][a];
+                BuildBox rest = box;
+                for (int b = first[a]; b < last[a]; ++b) {
+                    BuildBox left, right;
+                    splitter.split(refs[i].prim, rest, a, mapping.position(a, b + 1), left, right);
+                    grow(a, b, left);
+                    rest = right;
+                }
+                grow(a, last[a], rest);
+            }
+        }
+    }
+
+    void merge(const SpatialBins& other) {
+        for (int b = 0; b < count; ++b)
+            for (int a = 0; a < 3; ++a) {
+                grow(a, b, other.box(a, b));
+                enter[b][a] += other.enter[b][a];
+                exit[b][a] += other.exit[b][a];
+            }
+    }
+
+    SpatialSplit bestSplit(const SpatialBinMapping& mapping, uint32_t blockSize) const {
+        SpatialSplit best;
+        for (int a = 0; a < 3; ++a) {
+            if (!mapping.splittable(a)) continue;
+            std::array<float, kMaxSpatialBins> rightCost;
+            std::array<uint32_t, kMaxSpatialBins> rightCount;
+            BuildBox acc;
+            uint32_t n = 0;
+            for (int b = count - 1; b > 0; --b) {
+                acc.grow(box(a, b));
+                n += exit[b][a];
+                rightCount[b] = n;
+                rightCost[b] = sideCost(acc.halfArea(), n, blockSize);
+            }
+            acc = BuildBox();
+            n = 0;
+            for (int b = 0; b < count - 1; ++b) {
+                acc.grow(box(a, b));
+                n += enter[b][a];
+                if (n == 0 || rightCount[b + 1] == 0) continue;
+                const float cost = sideCost(acc.halfArea(), n, blockSize) + rightCost[b + 1];
+                if (cost < best.cost) best = {a, b, cost, n, rightCount[b + 1]};
+            }
+        }
+        return best;
+    }
+};
+
+} // namespace wideray
