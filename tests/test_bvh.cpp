@@ -1,7 +1,9 @@
-// BVH invariants: the builder and the wide collapse keep every triangle exactly once, inside every
-// box above it, and the SAH build beats a median split.
+// BVH invariants: the builder and the wide collapse keep every triangle exactly once (at least once,
+// every part of it covered, with spatial splits), inside every box above it, and the SAH build beats
+// a median split.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <functional>
@@ -34,15 +36,46 @@ Bounds3f triangleBox(const TriangleMesh& mesh, uint32_t prim) {
     return b;
 }
 
+/// The high quality build with spatial splits tried at every node, so that small meshes have many.
 template <int N>
-void checkWide(const TriangleMesh& mesh, CollapseMethod collapse = CollapseMethod::Sah) {
+BvhBuildConfig highConfig() {
     BvhBuildConfig config = SceneAccel<N>::defaultConfig();
+    config.quality = BuildQuality::High;
+    config.spatialMinRefs = 0;
+    return config;
+}
+
+/// Points spread over the triangle: its corners, edge midpoints and an interior grid.
+std::vector<glm::vec3> trianglePoints(const TriangleMesh& mesh, uint32_t prim) {
+    const glm::vec3 a = mesh.positions[mesh.triangles[prim].x], b = mesh.positions[mesh.triangles[prim].y],
+                    c = mesh.positions[mesh.triangles[prim].z];
+    std::vector<glm::vec3> points;
+    constexpr int kSteps = 6;
+    for (int i = 0; i <= kSteps; ++i)
+        for (int j = 0; i + j <= kSteps; ++j) {
+            const float u = float(i) / kSteps, v = float(j) / kSteps;
+            points.push_back(a + u * (b - a) + v * (c - a));
+        }
+    return points;
+}
+
+/// Within a few ulps: the sample points themselves are rounded.
+bool inside(const Bounds3f& box, const glm::vec3& p) {
+    const glm::vec3 slack = (glm::abs(box.lower) + glm::abs(box.upper)) * 1e-6f;
+    return glm::all(glm::lessThanEqual(box.lower - slack, p)) && glm::all(glm::lessThanEqual(p, box.upper + slack));
+}
+
+template <int N>
+void checkWide(const TriangleMesh& mesh, CollapseMethod collapse = CollapseMethod::Sah,
+               BuildQuality quality = BuildQuality::Fast) {
+    BvhBuildConfig config = quality == BuildQuality::High ? highConfig<N>() : SceneAccel<N>::defaultConfig();
     config.collapse = collapse;
     SceneAccel<N> accel(std::make_shared<SceneGeometry>(mesh), config);
     const WideBvh<N>& bvh = accel.bvh();
     const auto& blocks = accel.blocks();
     std::vector<int> seen(mesh.triangles.size(), 0);
     std::vector<int> blockSeen(blocks.size(), 0);
+    std::vector<std::vector<Bounds3f>> leafBoxes(mesh.triangles.size());  ///< of the leaves holding each triangle
 
     std::function<void(NodeRef, const Bounds3f&)> visit = [&](NodeRef ref, const Bounds3f& box) {
         if (ref.isLeaf()) {
@@ -53,7 +86,9 @@ void checkWide(const TriangleMesh& mesh, CollapseMethod collapse = CollapseMetho
                 for (int lane = 0; lane < block.count(); ++lane) {
                     uint32_t prim = block.primId[lane];
                     ++seen[prim];
-                    EXPECT_TRUE(box.contains(triangleBox(mesh, prim))) << "triangle " << prim << " outside its leaf box";
+                    leafBoxes[prim].push_back(box);
+                    if (quality == BuildQuality::Fast)
+                        EXPECT_TRUE(box.contains(triangleBox(mesh, prim))) << "triangle " << prim << " outside its leaf box";
                     const glm::uvec3& t = mesh.triangles[prim];
                     EXPECT_EQ(block.v1x[lane], mesh.positions[t.y].x);
                     EXPECT_EQ(block.v2z[lane], mesh.positions[t.z].z);
@@ -82,8 +117,26 @@ void checkWide(const TriangleMesh& mesh, CollapseMethod collapse = CollapseMetho
         }
     };
     visit(bvh.root, bvh.bounds);
-    for (size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "triangle " << i;
     for (size_t i = 0; i < blockSeen.size(); ++i) ASSERT_EQ(blockSeen[i], 1) << "block " << i;
+    if (quality == BuildQuality::Fast) {
+        for (size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], 1) << "triangle " << i;
+        return;
+    }
+    // Spatial splits: each triangle at least once, every point of it inside one of its leaves' boxes
+    // (the clipped parts together cover it), and no more references than the budget allows.
+    size_t references = 0;
+    for (uint32_t prim = 0; prim < seen.size(); ++prim) {
+        ASSERT_GE(seen[prim], 1) << "triangle " << prim;
+        references += size_t(seen[prim]);
+        for (const glm::vec3& p : trianglePoints(mesh, prim)) {
+            const bool covered = std::any_of(leafBoxes[prim].begin(), leafBoxes[prim].end(),
+                                             [&](const Bounds3f& box) { return inside(box, p); });
+            ASSERT_TRUE(covered) << "a point of triangle " << prim << " is in none of its " << seen[prim] << " leaf boxes";
+        }
+    }
+    EXPECT_EQ(references, accel.triangleReferences());
+    EXPECT_LE(double(references), double(mesh.triangles.size()) * (1.0 + double(config.replicationBudget)));
+    std::printf("  BVH%d high quality: %.3f references per triangle\n", N, double(references) / double(seen.size()));
 }
 
 TEST(Bvh, WideCollapseKeepsEveryTriangleOnceInsideItsBoxes) {
@@ -92,6 +145,35 @@ TEST(Bvh, WideCollapseKeepsEveryTriangleOnceInsideItsBoxes) {
         checkWide<4>(mesh, collapse);
         checkWide<8>(mesh, collapse);
     }
+}
+
+TEST(Bvh, SpatialSplitsCoverEveryTriangleWithinTheBudget) {
+    checkWide<4>(testMesh(), CollapseMethod::Sah, BuildQuality::High);
+    checkWide<8>(testMesh(), CollapseMethod::Sah, BuildQuality::High);
+    checkWide<8>(makeCube(), CollapseMethod::Sah, BuildQuality::High);
+    auto dir = sharedScenesDir();
+    if (!dir) GTEST_SKIP() << "the shared meshes need ../shared/scenes (or WIDERAY_SCENES)";
+    // Long thin triangles across big rooms: where spatial splits clip the most.
+    checkWide<8>(loadMesh(*dir / "crytek-sponza/sponza.obj"), CollapseMethod::Sah, BuildQuality::High);
+}
+
+/// The high quality build keeps its spatial splits only where the wide tree costs less for them.
+TEST(Bvh, HighQualityCostsAtMostTheFastBuild) {
+    auto cost = [](const TriangleMesh& mesh, const BvhBuildConfig& config) {
+        SceneAccel<8> accel(std::make_shared<SceneGeometry>(mesh), config);
+        return wideBvhStats(accel.bvh(), config).sahCost;
+    };
+    auto expectCheaper = [&](const TriangleMesh& mesh, const std::string& name) {
+        BvhBuildConfig high = SceneAccel<8>::defaultConfig();
+        high.quality = BuildQuality::High;
+        const double fast = cost(mesh, SceneAccel<8>::defaultConfig()), spatial = cost(mesh, high);
+        EXPECT_LE(spatial, fast) << name;
+        std::printf("  %-40s BVH8 SAH cost: fast %.3f, high %.3f\n", name.c_str(), fast, spatial);
+    };
+    expectCheaper(testMesh(), "test mesh");
+    auto dir = sharedScenesDir();
+    if (!dir) GTEST_SKIP() << "the shared meshes need ../shared/scenes (or WIDERAY_SCENES)";
+    for (const char* file : kSharedMeshes) expectCheaper(loadMesh(*dir / file), file);
 }
 
 template <int N>
@@ -177,15 +259,15 @@ TEST(Bvh, SahCostBelowMedianSplit) {
 
 /// The same tree whatever the thread count: one thread, then all of them (the build is parallel above
 /// 4096 primitives, which the test mesh exceeds).
-TEST(Bvh, BuildIsDeterministic) {
+void expectSameTreeOnOneAndAllThreads(const BvhBuildConfig& config) {
     TriangleMesh mesh = testMesh();
     ASSERT_GT(mesh.triangles.size(), 4096u);
     std::optional<SceneAccel<8>> a;
     {
         tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
-        a.emplace(std::make_shared<SceneGeometry>(mesh));
+        a.emplace(std::make_shared<SceneGeometry>(mesh), config);
     }
-    SceneAccel<8> b(std::make_shared<SceneGeometry>(mesh));
+    SceneAccel<8> b(std::make_shared<SceneGeometry>(mesh), config);
     ASSERT_EQ(a->bvh().nodes.size(), b.bvh().nodes.size());
     for (size_t n = 0; n < a->bvh().nodes.size(); ++n) {
         const WideNode<8>&x = a->bvh().nodes[n], &y = b.bvh().nodes[n];
@@ -197,6 +279,11 @@ TEST(Bvh, BuildIsDeterministic) {
     }
     ASSERT_EQ(a->blocks().size(), b.blocks().size());
     EXPECT_EQ(0, std::memcmp(a->blocks().data(), b.blocks().data(), a->blocks().size() * sizeof(TriangleBlock<4>)));
+}
+
+TEST(Bvh, BuildIsDeterministic) {
+    expectSameTreeOnOneAndAllThreads(SceneAccel<8>::defaultConfig());
+    expectSameTreeOnOneAndAllThreads(highConfig<8>());
 }
 
 } // namespace

@@ -25,10 +25,15 @@ size_t rayBudget(const TriangleMesh& mesh, size_t wanted) {
     return std::max<size_t>(200, std::min(wanted, size_t(budget / double(std::max<size_t>(1, mesh.triangles.size())))));
 }
 
+/// quality High: spatial splits tried at every node (a triangle in several leaves, clipped boxes).
 template <int N>
-void expectMatchesBruteForce(const TriangleMesh& mesh, size_t rayCount, uint32_t seed) {
+void expectMatchesBruteForce(const TriangleMesh& mesh, size_t rayCount, uint32_t seed,
+                             BuildQuality quality = BuildQuality::Fast) {
     FlushToZeroScope ftz;
-    SceneAccel<N> accel(std::make_shared<SceneGeometry>(mesh));
+    BvhBuildConfig config = SceneAccel<N>::defaultConfig();
+    config.quality = quality;
+    config.spatialMinRefs = 0;
+    SceneAccel<N> accel(std::make_shared<SceneGeometry>(mesh), config);
     std::vector<Ray> rays = testing::randomRays(mesh, rayCount, seed);
     std::vector<Hit> hits(rays.size());
     std::vector<uint8_t> occluded(rays.size());
@@ -55,6 +60,7 @@ TEST(Traversal, MatchesBruteForceOnGeneratedMeshes) {
     for (const TriangleMesh& mesh : {makeIcosphere(4), makeTorus(1.0f, 0.3f, 64, 32), makeCube()}) {
         expectMatchesBruteForce<4>(mesh, rayBudget(mesh, 100000), 1);
         expectMatchesBruteForce<8>(mesh, rayBudget(mesh, 100000), 2);
+        expectMatchesBruteForce<8>(mesh, rayBudget(mesh, 100000), 5, BuildQuality::High);
     }
 }
 
@@ -66,6 +72,7 @@ TEST_P(SharedMeshTraversal, MatchesBruteForce) {
     TriangleMesh mesh = loadMesh(*dir / GetParam());
     expectMatchesBruteForce<8>(mesh, rayBudget(mesh, 100000), 3);
     expectMatchesBruteForce<4>(mesh, rayBudget(mesh, 20000), 4);
+    expectMatchesBruteForce<8>(mesh, rayBudget(mesh, 20000), 6, BuildQuality::High);
 }
 
 INSTANTIATE_TEST_SUITE_P(RealMeshes, SharedMeshTraversal,

@@ -51,6 +51,10 @@ struct BvhBuildConfig {
     /// High quality: spatial splits are tried where the best object split's children overlap by more
     /// than this fraction of the root's area (Stich et al.'s alpha).
     float spatialOverlap = 1e-5f;
+    /// High quality: nodes with fewer references use object splits only. Measured on Sponza, the
+    /// country kitchen and the bunny: the same SAH cost as spatial splits everywhere, half the build
+    /// time on the bunny.
+    int spatialMinRefs = 256;
 };
 
 /// The deepest a build goes; past kMedianDepth it splits at the object median, which bounds the depth.

@@ -133,7 +133,7 @@ private:
         binObjects(range, objectMapping, objectBins);
         const ObjectSplit object = objectBins.bestSplit(objectMapping, count, blockSize());
         SpatialSplit spatial;
-        if (splitter_ && range.spare() > 0) {
+        if (splitter_ && range.spare() > 0 && count >= uint32_t(config_.spatialMinRefs)) {
             BuildBox overlap = object.left;
             overlap.intersect(object.right);
             if (object.axis < 0 || overlap.halfArea() > config_.spatialOverlap * rootHalfArea_) {
@@ -204,8 +204,9 @@ private:
     }
 
     /// References wholly below the plane go left, wholly above go right, and the ones across it are
-    /// clipped into a part on each side (the duplicates take spare capacity). Where rounding leaves
-    /// one side empty, the clipped references are split at the median instead.
+    /// clipped into a part on each side (the duplicates take spare capacity), unless putting one
+    /// whole on one side costs less (Stich et al.'s reference unsplitting). Where rounding leaves one
+    /// side empty, the references are split at the median instead.
     void splitSpatially(const BuildRange& range, const SpatialSplit& split, BuildRange& left, BuildRange& right) {
         const SpatialBinMapping mapping(range.bounds, config_.spatialBinCount);
         const float position = mapping.position(split.axis, split.bin + 1);
@@ -225,10 +226,20 @@ private:
         std::move_backward(above, end, end + crossing);
         BuildRef* lowerParts = across;
         BuildRef* upperParts = above;
+        const float leftArea = split.left.halfArea(), rightArea = split.right.halfArea();
+        const float leftCount = float(split.leftCount), rightCount = float(split.rightCount);
+        const float splitCost = leftArea * leftCount + rightArea * rightCount;
         for (BuildRef* r = across; r != above; ++r) {
             const BuildRef ref = *r;
             BuildBox below, over;
-            splitter_->split(ref.prim, BuildBox(ref), split.axis, position, below, over);
+            splitter_->triangle(ref.prim).split(BuildBox(ref), split.axis, position, below, over);
+            BuildBox leftWhole = split.left, rightWhole = split.right;
+            leftWhole.grow(BuildBox(ref));
+            rightWhole.grow(BuildBox(ref));
+            const float allLeft = leftWhole.halfArea() * leftCount + rightArea * (rightCount - 1);
+            const float allRight = leftArea * (leftCount - 1) + rightWhole.halfArea() * rightCount;
+            if (allLeft < splitCost && allLeft <= allRight) below = BuildBox(ref), over = BuildBox();
+            else if (allRight < splitCost) below = BuildBox(), over = BuildBox(ref);
             if (below.empty() && over.empty()) below = BuildBox(ref);
             if (!below.empty()) below.storeInto(*lowerParts++ = ref);
             if (!over.empty()) over.storeInto(*upperParts++ = ref);

@@ -8,6 +8,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "accel/bvh_stats.h"
 #include "accel/triangle_splitter.h"
 
 namespace wideray {
@@ -88,11 +89,30 @@ SceneAccel<N>::SceneAccel(std::shared_ptr<const SceneGeometry> geometry, const B
         if (item.triangles() && g != 0) throw std::logic_error("SceneAccel: triangle meshes must be geometry 0");
     }
     WideBvh<N> triangles, user;
-    if (geometry_->size() > 0 && (*geometry_)[0].triangles()) triangles = buildTriangles(*(*geometry_)[0].triangles(), config);
+    if (geometry_->size() > 0 && (*geometry_)[0].triangles()) triangles = buildTrianglesAtBest(*(*geometry_)[0].triangles(), config);
     user = buildUser(config);
     auto start = std::chrono::steady_clock::now();
     bvh_ = joinBvhs(std::move(triangles), std::move(user));
     timings_.collapseSeconds += secondsSince(start);
+}
+
+template <int N>
+WideBvh<N> SceneAccel<N>::buildTrianglesAtBest(const TriangleMesh& mesh, const BvhBuildConfig& config) {
+    WideBvh<N> bvh = buildTriangles(mesh, config);
+    if (config.quality != BuildQuality::High) return bvh;
+    // Top-down splitting is greedy: on some meshes (Suzanne) the spatial splits that lower the cost
+    // near the root raise it below. The high quality build is never worse than the fast one.
+    std::vector<TriangleBlock<kBlockSize>> spatialBlocks = std::move(blocks_);
+    const size_t spatialReferences = triangleReferences_;
+    blocks_.clear();
+    triangleReferences_ = 0;
+    BvhBuildConfig fast = config;
+    fast.quality = BuildQuality::Fast;
+    WideBvh<N> objectBvh = buildTriangles(mesh, fast);
+    if (wideBvhStats(objectBvh, config).sahCost < wideBvhStats(bvh, config).sahCost) return objectBvh;
+    blocks_ = std::move(spatialBlocks);
+    triangleReferences_ = spatialReferences;
+    return bvh;
 }
 
 template <int N>

@@ -40,6 +40,8 @@ public:
 
 private:
     WideBvh<N> buildTriangles(const TriangleMesh& mesh, const BvhBuildConfig& config);
+    /// At high quality, the cheaper (by SAH) of the builds with and without spatial splits.
+    WideBvh<N> buildTrianglesAtBest(const TriangleMesh& mesh, const BvhBuildConfig& config);
     WideBvh<N> buildUser(const BvhBuildConfig& config);
 
     WideBvh<N> bvh_;

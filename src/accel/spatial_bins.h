@@ -47,6 +47,7 @@ struct SpatialSplit {
     int bin = 0;
     float cost = std::numeric_limits<float>::infinity();
     uint32_t leftCount = 0, rightCount = 0;  ///< their sum exceeds the node's count by the duplicates
+    BuildBox left, right;                    ///< the boxes of the two sides' (clipped) references
 };
 
 struct SpatialBins {
@@ -78,6 +79,11 @@ struct SpatialBins {
             alignas(16) int32_t first[4], last[4];
             _mm_store_si128(reinterpret_cast<__m128i*>(first), mapping.binOf(box.lower));
             _mm_store_si128(reinterpret_cast<__m128i*>(last), mapping.binOf(box.upper));
+            const bool spansBins = (_mm_movemask_ps(_mm_castsi128_ps(
+                                        _mm_cmpeq_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(first)),
+                                                        _mm_load_si128(reinterpret_cast<const __m128i*>(last))))) &
+                                    7) != 7;
+            const SplitTriangle triangle = spansBins ? splitter.triangle(refs[i].prim) : SplitTriangle({}, {}, {});
             for (int a = 0; a < 3; ++a) {
                 if (!mapping.splittable(a)) continue;
                 ++enter[first[a]][a];
@@ -85,7 +91,7 @@ struct SpatialBins {
                 BuildBox rest = box;
                 for (int b = first[a]; b < last[a]; ++b) {
                     BuildBox left, right;
-                    splitter.split(refs[i].prim, rest, a, mapping.position(a, b + 1), left, right);
+                    triangle.split(rest, a, mapping.position(a, b + 1), left, right);
                     grow(a, b, left);
                     rest = right;
                 }
@@ -124,9 +130,11 @@ struct SpatialBins {
                 n += enter[b][a];
                 if (n == 0 || rightCount[b + 1] == 0) continue;
                 const float cost = sideCost(acc.halfArea(), n, blockSize) + rightCost[b + 1];
-                if (cost < best.cost) best = {a, b, cost, n, rightCount[b + 1]};
+                if (cost < best.cost) best = {a, b, cost, n, rightCount[b + 1], {}, {}};
             }
         }
+        if (best.axis >= 0)
+            for (int b = 0; b < count; ++b) (b <= best.bin ? best.left : best.right).grow(box(best.axis, b));
         return best;
     }
 };
