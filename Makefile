@@ -36,7 +36,8 @@ sanitize: deps
 	cmake --build $(ASAN_BUILD) -j $(JOBS) --target wideray_tests wideray
 	ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp UBSAN_OPTIONS=print_stacktrace=1 ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 
-## Our kernels against Embree's (each on its medium and high quality build) on the shared meshes, framed
+## Our kernels (on our fast and high quality builds) against Embree's (on its medium and high quality
+## builds) on the shared meshes, framed
 ## from outside, and on interior views (BENCH_SCENES): a comparison on all threads (out/bench.json),
 ## a thread-scaling run on 1..nproc threads (out/scaling.json), then docs/performance.md and
 ## docs/performance.svg regenerated from the JSON. Meshes missing from SCENES_DIR are left out.
@@ -52,7 +53,7 @@ BENCH_SCENES ?= scenes/sponza_interior.json scenes/country_kitchen.json
 SCALING_MESHES ?= stanford-bunny/bun_zipper.ply crytek-sponza/sponza.obj
 SCALING_THREADS ?= $(shell seq 1 $(shell nproc))
 BENCH_COMMAND = $(BUILD)/wideray bench $(wildcard $(addprefix $(SCENES_DIR)/,$(BENCH_MESHES))) $(BENCH_SCENES) \
-  --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --json out/bench.json
+  --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --quality both --json out/bench.json
 SCALING_COMMAND = $(BUILD)/wideray bench $(wildcard $(addprefix $(SCENES_DIR)/,$(SCALING_MESHES))) \
   --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --rays primary,diffuse
 SCALING_LOOP = for t in $(SCALING_THREADS); do $(SCALING_COMMAND) --threads $$t --json out/scaling-$$t-threads.json || exit 1; done

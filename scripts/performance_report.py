@@ -68,8 +68,8 @@ def scenes_in_order(records):
 
 def index_results(results):
     """(scene, ray kind, backend) -> {kernel label: record}; ours are labelled with the ISA when
-    several ISAs were measured (bench --all-isas). Embree's kernels keep the faster of their builds
-    (medium or high quality: the record's "quality")."""
+    several ISAs were measured (bench --all-isas). Every kernel keeps the faster of its builds (ours:
+    fast or high quality, Embree's: medium or high; the record's "quality")."""
     isas = {r["isa"] for r in results if r["backend"] == "wideray" and r["kernel"] != "scalar"}
     table = {}
     for r in results:
@@ -82,8 +82,8 @@ def index_results(results):
     return table
 
 
-def embree_label(label, record):
-    """An Embree kernel with the build quality it was fastest on."""
+def build_label(label, record):
+    """A kernel with the build quality it was fastest on."""
     return "%s, %s" % (label, record["quality"]) if "quality" in record else label
 
 
@@ -184,13 +184,14 @@ def summary_section(bench, table, chart_name):
             if not ours or not theirs:
                 continue
             rows[workload(ours[1])].append((scene, "{:,}".format(ours[1]["triangles"]), kind,
-                                            "%s (%s)" % (mrays(ours[1]["mrays_per_s"]), ours[0]),
-                                            "%s (%s)" % (mrays(theirs[1]["mrays_per_s"]), embree_label(*theirs)),
+                                            "%s (%s)" % (mrays(ours[1]["mrays_per_s"]), build_label(*ours)),
+                                            "%s (%s)" % (mrays(theirs[1]["mrays_per_s"]), build_label(*theirs)),
                                             ratio(ours[1]["mrays_per_s"], theirs[1]["mrays_per_s"])))
-    header = ("scene", "triangles", "rays", "ours, Mrays/s (kernel)", "Embree, Mrays/s (kernel, build)",
+    header = ("scene", "triangles", "rays", "ours, Mrays/s (kernel, build)", "Embree, Mrays/s (kernel, build)",
               "ours / Embree")
     parts = ["## Best against best\n\nMrays/s of the fastest kernel of each backend for each scene and ray kind; "
-             "Embree's kernels are traced on its medium and its high quality build and the faster counts "
+             "every kernel is traced on each build (ours: fast and high quality; Embree's: medium and high) "
+             "and the faster counts "
              "(chart: [%s](%s))." % (chart_name, chart_name)]
     if rows["scene"]:
         parts.append("### Interior views (scene files with their own cameras)\n\n" + md_table(header, rows["scene"]))
@@ -204,7 +205,7 @@ def kernel_section(bench, table):
     parts = ["## Kernel against kernel\n\nMrays/s. Each of our kernels next to its Embree counterpart: single "
              "ray and the scalar reference against `rtcIntersect1`, packetK against `rtcIntersectK` "
              "(`rtcOccludedK` for shadow rays), packet256 against `rtcIntersect16`, stream against "
-             "`rtcIntersect1M`. Embree's number is that of its faster build (medium or high quality)."]
+             "`rtcIntersect1M`. Each number is that of the kernel's faster build (ours: fast or high quality; Embree's: medium or high)."]
     for scene in scenes_in_order(bench["results"]):
         header = ["ours", "Embree"]
         for kind in RAY_KINDS:
@@ -222,7 +223,7 @@ def kernel_section(bench, table):
             for kind in RAY_KINDS:
                 ours = table.get((scene, kind, "wideray"), {}).get(label)
                 theirs = table.get((scene, kind, "embree"), {}).get(embree_counterpart(kernel, kind))
-                row += [mrays(ours["mrays_per_s"]) if ours else "",
+                row += ["%s (%s)" % (mrays(ours["mrays_per_s"]), ours.get("quality", "fast")) if ours else "",
                         "%s (%s)" % (mrays(theirs["mrays_per_s"]), theirs.get("quality", "medium")) if theirs else "",
                         ratio(ours["mrays_per_s"], theirs["mrays_per_s"]) if ours and theirs else ""]
             rows.append(row)
@@ -234,15 +235,15 @@ def kernel_section(bench, table):
 def builds_by_scene(builds):
     out = OrderedDict()
     for b in builds:
-        key = b["backend"] if b["backend"] == "wideray" else "embree-" + b["quality"]
-        out.setdefault(b["scene"], {})[key] = b
+        out.setdefault(b["scene"], {})[b["backend"] + "-" + b.get("quality", "fast")] = b
     return out
 
 
 def build_section(bench):
     rows = []
     for scene, b in builds_by_scene(bench["builds"]).items():
-        ours, medium, high = b.get("wideray"), b.get("embree-medium"), b.get("embree-high")
+        ours, ours_high = b.get("wideray-fast"), b.get("wideray-high")
+        medium, high = b.get("embree-medium"), b.get("embree-high")
         if not ours:
             continue
 
@@ -252,19 +253,25 @@ def build_section(bench):
         def mb(x):
             return "%.1f" % (x["bytes"] / 1e6) if x else ""
 
-        def faster(x):
-            return "%.2f×" % (x["seconds"] / ours["seconds"]) if x and ours["seconds"] > 0 else ""
+        def faster(theirs, mine):
+            return "%.2f×" % (theirs["seconds"] / mine["seconds"]) if theirs and mine and mine["seconds"] > 0 else ""
 
-        rows.append((scene, ms(ours), mb(ours), ms(medium), mb(medium), ms(high), mb(high),
-                     faster(medium), faster(high),
+        def refs(x):
+            return "%.3f" % (x["references"] / ours["references"]) if x and "references" in x and ours.get("references") else ""
+
+        rows.append((scene, ms(ours), mb(ours), ms(ours_high), mb(ours_high), refs(ours_high), ms(medium), mb(medium),
+                     ms(high), mb(high), faster(medium, ours), faster(high, ours_high),
                      "%.2f×" % (ours["bytes"] / medium["bytes"]) if medium and medium["bytes"] else ""))
     return ("## Builds and memory\n\nBuild time on all threads of the comparison run, and the memory of the "
             "acceleration structure (ours: binned SAH binary BVH collapsed to 8 wide, with leaf triangle "
-            "blocks). Build speed ratios are Embree's time / ours (above 1 we build faster); the memory "
-            "ratio is ours / Embree medium (below 1 we use less).\n\n"
-            + md_table(("scene", "ours ms", "ours MB", "Embree medium ms", "Embree medium MB", "Embree high ms",
-                        "Embree high MB", "build speed vs medium", "build speed vs high", "memory vs medium"),
-                       rows))
+            "blocks; high quality adds spatial splits, references per triangle say how many triangles "
+            "they duplicate). Build speed ratios are Embree's time / ours, fast against medium and high "
+            "against high (above 1 we build faster); the memory ratio is ours (fast) / Embree medium "
+            "(below 1 we use less).\n\n"
+            + md_table(("scene", "ours fast ms", "ours fast MB", "ours high ms", "ours high MB",
+                        "high: references per triangle", "Embree medium ms", "Embree medium MB", "Embree high ms",
+                        "Embree high MB", "build speed: fast vs medium", "build speed: high vs high",
+                        "memory vs medium"), rows))
 
 
 def scaling_section(scaling):
@@ -272,7 +279,7 @@ def scaling_section(scaling):
     top = max(thread_counts)
     table = {}
     for r in scaling["results"]:
-        kernel = embree_label(r["kernel"], r) if r["backend"] == "embree" else r["kernel"]
+        kernel = build_label(r["kernel"], r) if r["backend"] == "embree" else r["kernel"]
         table.setdefault((r["scene"], r["ray_kind"], r["backend"], kernel), {})[r["threads"]] = r
     rows = []
     for scene in scenes_in_order(scaling["results"]):
@@ -296,8 +303,8 @@ def scaling_section(scaling):
     build_rows = []
     builds = {}
     for b in scaling["builds"]:
-        key = b["backend"] if b["backend"] == "wideray" else "Embree " + b["quality"]
-        builds.setdefault((b["scene"], "ours" if key == "wideray" else key), {})[b["threads"]] = b["seconds"]
+        who = ("ours " if b["backend"] == "wideray" else "Embree ") + b.get("quality", "fast")
+        builds.setdefault((b["scene"], who), {})[b["threads"]] = b["seconds"]
     for (scene, who), by_threads in builds.items():
         one = by_threads.get(1)
         for t in thread_counts:

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cassert>
+#include <cstddef>
+#include <memory>
+#include <new>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_invoke.h>
@@ -75,12 +78,15 @@ public:
         const uint32_t capacity =
             splitter_ ? primCount + uint32_t(double(primCount) * std::max(0.0f, config_.replicationBudget)) : primCount;
         refs_.resize(capacity);
-        out_.nodes.resize(2 * size_t(capacity) - 1);
+        // Room for the most nodes a tree over `capacity` references can have, of which the build
+        // touches only those it creates (zeroing all would be a single-threaded pass).
+        nodeStorage_.reset(new std::byte[(2 * size_t(capacity) - 1) * sizeof(BinaryNode)]);
+        nodes_ = reinterpret_cast<BinaryNode*>(nodeStorage_.get());
         nodeCount_ = 1;
         BuildRange root = measured(0, primCount, capacity);
         rootHalfArea_ = root.bounds.halfArea();
         buildNode(0, root, 0);
-        out_.nodes.resize(nodeCount_);
+        out_.nodes.assign(nodes_, nodes_ + nodeCount_);
         gatherLeaves();
     }
 
@@ -96,7 +102,7 @@ private:
     }
 
     void buildNode(uint32_t nodeIndex, const BuildRange& range, int depth) {
-        BinaryNode& node = out_.nodes[nodeIndex];
+        BinaryNode& node = *new (&nodes_[nodeIndex]) BinaryNode;
         node.bounds = range.bounds.bounds();
         BuildRange left, right;
         if (!split(range, depth, left, right)) {
@@ -297,6 +303,8 @@ private:
     const BvhBuildConfig& config_;
     const TriangleSplitter* splitter_;
     BinaryBvh& out_;
+    std::unique_ptr<std::byte[]> nodeStorage_;
+    BinaryNode* nodes_ = nullptr;
     std::atomic<uint32_t> nodeCount_{0};
     float rootHalfArea_ = 0;
 };

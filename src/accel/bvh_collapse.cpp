@@ -1,10 +1,17 @@
 #include "accel/wide_bvh.h"
+#include "core/default_init_allocator.h"
 
 #include <algorithm>
 #include <limits>
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
 namespace wideray {
 namespace {
+
+/// Above this depth the collapse's passes recurse as tasks.
+constexpr int kTaskDepth = 8;
 
 template <int N>
 WideNode<N> emptyNode() {
@@ -28,91 +35,137 @@ void setChildBounds(WideNode<N>& node, int i, const Bounds3f& b) {
     node.upperZ[i] = b.upper.z;
 }
 
-/// Writes wide node `wideIndex` with `children` (binary nodes) in its slots: `isLeaf(b)` says which
-/// become leaves, `makeLeaf(b)` emits one, `fill(wideIndex, b)` builds an inner child's node. Inner
-/// children get adjacent slots in the node array before any of them is filled.
-template <int N, class IsLeaf, class MakeLeaf, class Fill>
-void writeWideNode(const BinaryBvh& binary, WideBvh<N>& out, uint32_t wideIndex, const uint32_t* children,
-                   int childCount, IsLeaf isLeaf, MakeLeaf makeLeaf, Fill fill) {
-    int innerCount = 0;
-    for (int i = 0; i < childCount; ++i) innerCount += isLeaf(children[i]) ? 0 : 1;
-    const uint32_t nextInner = uint32_t(out.nodes.size());
-    out.nodes.resize(out.nodes.size() + innerCount);
+/// Writes the wide tree a collapse decided, described by its Shape: isLeaf(b) says which binary
+/// nodes become wide leaves, prims(b) their primitives, children(b, out) the binary nodes in the
+/// slots of the wide node b becomes. A first pass counts every wide subtree's nodes and leaf items,
+/// so that the second can write subtrees in parallel at their final places: each wide node's inner
+/// children adjacent, its leaves' items first, then its inner children's subtrees in slot order.
+template <int N, class Shape>
+class WideTreeWriter {
+public:
+    WideTreeWriter(const BinaryBvh& binary, const Shape& shape, LeafWriter& leaves, WideBvh<N>& out)
+        : binary_(binary), shape_(shape), leaves_(leaves), out_(out), sizes_(binary.nodes.size()) {}
 
-    WideNode<N> node = emptyNode<N>();
-    uint32_t pending[N];
-    int pendingCount = 0;
-    for (int i = 0; i < childCount; ++i) {
-        setChildBounds(node, i, binary.nodes[children[i]].bounds);
-        if (isLeaf(children[i])) {
-            node.child[i] = makeLeaf(children[i]);
-        } else {
-            node.child[i] = NodeRef::inner(nextInner + pendingCount);
-            pending[pendingCount++] = children[i];
+    void run() {
+        out_.bounds = binary_.nodes[0].bounds;
+        if (shape_.isLeaf(0)) {
+            const uint32_t items = leaves_.itemCount(shape_.prims(0));
+            leaves_.allocate(items);
+            leaves_.write(shape_.prims(0), 0);
+            out_.root = NodeRef::leaf(0, items);
+            return;
         }
+        const Size total = count(0, 0);
+        out_.nodes.resize(total.nodes);
+        leaves_.allocate(total.items);
+        out_.root = NodeRef::inner(0);
+        fill(0, 0, 1, 0, 0);
     }
-    out.nodes[wideIndex] = node;
-    for (int i = 0; i < pendingCount; ++i) fill(nextInner + i, pending[i]);
-}
+
+private:
+    /// Of a wide subtree: its wide nodes; of a wide leaf: nothing. Both: the leaf items.
+    struct Size {
+        uint32_t nodes = 0, items = 0;
+    };
+
+    template <class F>
+    static void forEach(int count, int depth, F f) {
+        if (depth < kTaskDepth) tbb::parallel_for(0, count, f);
+        else
+            for (int i = 0; i < count; ++i) f(i);
+    }
+
+    Size count(uint32_t b, int depth) {
+        uint32_t children[N];
+        const int childCount = shape_.children(b, children);
+        forEach(childCount, depth, [&](int i) {
+            const uint32_t c = children[i];
+            if (shape_.isLeaf(c)) sizes_[c] = {0, leaves_.itemCount(shape_.prims(c))};
+            else count(c, depth + 1);
+        });
+        Size s{1, 0};
+        for (int i = 0; i < childCount; ++i) {
+            s.nodes += sizes_[children[i]].nodes;
+            s.items += sizes_[children[i]].items;
+        }
+        sizes_[b] = s;
+        return s;
+    }
+
+    /// Writes wide node `wideIndex` for binary node b; its inner children go to nextNode on, its
+    /// items to nextItem on.
+    void fill(uint32_t wideIndex, uint32_t b, uint32_t nextNode, uint32_t nextItem, int depth) {
+        uint32_t children[N];
+        const int childCount = shape_.children(b, children);
+        WideNode<N> node = emptyNode<N>();
+        uint32_t inner[N], innerNode[N], innerItem[N];
+        int innerCount = 0;
+        for (int i = 0; i < childCount; ++i) innerCount += shape_.isLeaf(children[i]) ? 0 : 1;
+        uint32_t descendants = nextNode + uint32_t(innerCount);
+        int k = 0;
+        for (int i = 0; i < childCount; ++i) {
+            const uint32_t c = children[i];
+            setChildBounds(node, i, binary_.nodes[c].bounds);
+            if (shape_.isLeaf(c)) {
+                leaves_.write(shape_.prims(c), nextItem);
+                node.child[i] = NodeRef::leaf(nextItem, sizes_[c].items);
+                nextItem += sizes_[c].items;
+            } else {
+                node.child[i] = NodeRef::inner(nextNode + uint32_t(k));
+                inner[k] = c;
+                innerNode[k] = descendants;
+                descendants += sizes_[c].nodes - 1;
+                ++k;
+            }
+        }
+        for (int j = 0; j < innerCount; ++j) {
+            innerItem[j] = nextItem;
+            nextItem += sizes_[inner[j]].items;
+        }
+        out_.nodes[wideIndex] = node;
+        forEach(innerCount, depth, [&](int j) {
+            fill(nextNode + uint32_t(j), inner[j], innerNode[j], innerItem[j], depth + 1);
+        });
+    }
+
+    const BinaryBvh& binary_;
+    const Shape& shape_;
+    LeafWriter& leaves_;
+    WideBvh<N>& out_;
+    std::vector<Size> sizes_;  ///< by binary node, for those that become wide nodes or leaves
+};
 
 /// The greedy collapse: each wide node takes the binary node's children and keeps opening the one
 /// with the largest surface area until it has N.
 template <int N>
-class GreedyCollapser {
-public:
-    GreedyCollapser(const BinaryBvh& binary, const LeafEmitter& emitLeaf, WideBvh<N>& out)
-        : binary_(binary), emitLeaf_(emitLeaf), out_(out) {}
+struct GreedyShape {
+    const BinaryBvh& binary;
 
-    void run() {
-        const BinaryNode& root = binary_.nodes[0];
-        out_.bounds = root.bounds;
-        if (root.isLeaf()) {
-            out_.root = makeLeaf(root);
-            return;
-        }
-        out_.nodes.emplace_back();
-        out_.root = NodeRef::inner(0);
-        fillNode(0, 0);
+    bool isLeaf(uint32_t b) const { return binary.nodes[b].isLeaf(); }
+    std::span<const uint32_t> prims(uint32_t b) const {
+        return {binary.primIndices.data() + binary.nodes[b].first, binary.nodes[b].count};
     }
-
-private:
-    NodeRef makeLeaf(const BinaryNode& node) {
-        std::span<const uint32_t> prims(binary_.primIndices.data() + node.first, node.count);
-        uint32_t count = 0;
-        uint32_t first = emitLeaf_(prims, count);
-        return NodeRef::leaf(first, count);
-    }
-
-    void fillNode(uint32_t wideIndex, uint32_t binaryIndex) {
-        // Open the largest inner child until there are N children.
-        uint32_t children[N];
-        int childCount = 2;
-        children[0] = binary_.nodes[binaryIndex].first;
-        children[1] = children[0] + 1;
-        while (childCount < N) {
+    int children(uint32_t b, uint32_t* out) const {
+        int count = 2;
+        out[0] = binary.nodes[b].first;
+        out[1] = out[0] + 1;
+        while (count < N) {
             int largest = -1;
             float largestArea = -1.0f;
-            for (int i = 0; i < childCount; ++i) {
-                const BinaryNode& c = binary_.nodes[children[i]];
+            for (int i = 0; i < count; ++i) {
+                const BinaryNode& c = binary.nodes[out[i]];
                 if (!c.isLeaf() && c.bounds.area() > largestArea) {
                     largest = i;
                     largestArea = c.bounds.area();
                 }
             }
             if (largest < 0) break;
-            uint32_t opened = children[largest];
-            children[largest] = binary_.nodes[opened].first;
-            children[childCount++] = binary_.nodes[opened].first + 1;
+            const uint32_t opened = out[largest];
+            out[largest] = binary.nodes[opened].first;
+            out[count++] = binary.nodes[opened].first + 1;
         }
-
-        writeWideNode<N>(
-            binary_, out_, wideIndex, children, childCount, [&](uint32_t b) { return binary_.nodes[b].isLeaf(); },
-            [&](uint32_t b) { return makeLeaf(binary_.nodes[b]); }, [&](uint32_t w, uint32_t b) { fillNode(w, b); });
+        return count;
     }
-
-    const BinaryBvh& binary_;
-    const LeafEmitter& emitLeaf_;
-    WideBvh<N>& out_;
 };
 
 /// The collapse that minimizes the SAH cost of the wide tree (Ylitie, Karras and Laine 2017, "Efficient
@@ -121,88 +174,96 @@ private:
 /// primitives re-packed into blocks), a wide node, or is dissolved so that its children take slots of
 /// the wide node above.
 template <int N>
-class SahCollapser {
+class SahShape {
 public:
-    SahCollapser(const BinaryBvh& binary, const LeafEmitter& emitLeaf, const BvhBuildConfig& config, WideBvh<N>& out)
-        : binary_(binary), emitLeaf_(emitLeaf), config_(config), out_(out), nodes_(binary.nodes.size()) {}
+    SahShape(const BinaryBvh& binary, const BvhBuildConfig& config)
+        : binary_(binary), config_(config), plans_(binary.nodes.size()) {
+        solve(0, 0);
+    }
 
-    void run() {
-        solve();
-        const BinaryNode& root = binary_.nodes[0];
-        out_.bounds = root.bounds;
-        if (root.isLeaf() || nodes_[0].leaf) {
-            out_.root = makeLeaf(0);
-            return;
-        }
-        out_.nodes.emplace_back();
-        out_.root = NodeRef::inner(0);
-        fillNode(0, 0);
+    bool isLeaf(uint32_t b) const { return plans_[b].leaf; }
+    std::span<const uint32_t> prims(uint32_t b) const {
+        return {binary_.primIndices.data() + plans_[b].begin, plans_[b].count};
+    }
+    int children(uint32_t b, uint32_t* out) const {
+        int count = 0;
+        const uint32_t left = binary_.nodes[b].first;
+        const int split = plans_[b].nodeSplit;
+        expand(left, split, out, count);
+        expand(left + 1, N - split, out, count);
+        return count;
     }
 
 private:
     /// What the dynamic program knows of one binary node.
+    /// Left uninitialized until solve() writes it (there are as many as binary nodes).
     struct Plan {
-        uint32_t begin = 0, count = 0;  ///< the subtree's primitives, contiguous in primIndices
-        bool leaf = false;              ///< as a child slot: a leaf (else a wide node)
-        float slot = 0;                 ///< the subtree's cost in one child slot
-        float forest[N + 1];            ///< forest[j]: its cost in at most j slots (j >= 1)
-        uint8_t split[N + 1];           ///< forest[j] splits into (split[j], j - split[j]) of the children; 0: one slot
-        uint8_t nodeSplit = 0;          ///< as a wide node: its N slots split (nodeSplit, N - nodeSplit) between the children
+        uint32_t begin, count;  ///< the subtree's primitives, contiguous in primIndices
+        bool leaf;              ///< as a child slot: a leaf (else a wide node)
+        float slot;             ///< the subtree's cost in one child slot
+        float forest[N + 1];    ///< forest[j]: its cost in at most j slots (j >= 1)
+        uint8_t split[N + 1];   ///< forest[j] splits into (split[j], j - split[j]) of the children; 0: one slot
+        uint8_t nodeSplit;      ///< as a wide node: its N slots split (nodeSplit, N - nodeSplit) between the children
     };
 
     uint32_t blocksOf(uint32_t count) const {
         return (count + uint32_t(config_.blockSize) - 1) / uint32_t(config_.blockSize);
     }
 
-    /// Children before parents: the builder numbers every node's children after the node itself.
-    void solve() {
+    /// Children before parents, the two subtrees as tasks near the root.
+    void solve(uint32_t i, int depth) {
+        const BinaryNode& node = binary_.nodes[i];
+        Plan& plan = plans_[i];
+        const float area = node.bounds.area();
+        if (node.isLeaf()) {
+            plan.begin = node.first;
+            plan.count = node.count;
+            plan.leaf = true;
+            plan.nodeSplit = 0;
+            plan.slot = config_.intersectionCost * float(blocksOf(node.count)) * area;
+            for (int j = 1; j <= N; ++j) plan.forest[j] = plan.slot, plan.split[j] = 0;
+            return;
+        }
+        if (depth < kTaskDepth)
+            tbb::parallel_invoke([&] { solve(node.first, depth + 1); }, [&] { solve(node.first + 1, depth + 1); });
+        else {
+            solve(node.first, depth + 1);
+            solve(node.first + 1, depth + 1);
+        }
         // A leaf made of a dissolved subtree holds at most this many blocks (and at most what one wide
         // leaf can address).
         const uint32_t maxMergedBlocks = std::min<uint32_t>(NodeRef::kMaxLeafItems, 4);
-        for (size_t i = binary_.nodes.size(); i-- > 0;) {
-            const BinaryNode& node = binary_.nodes[i];
-            Plan& plan = nodes_[i];
-            const float area = node.bounds.area();
-            if (node.isLeaf()) {
-                plan.begin = node.first;
-                plan.count = node.count;
-                plan.leaf = true;
-                plan.slot = config_.intersectionCost * float(blocksOf(node.count)) * area;
-                for (int j = 1; j <= N; ++j) plan.forest[j] = plan.slot, plan.split[j] = 0;
-                continue;
+        const Plan &l = plans_[node.first], &r = plans_[node.first + 1];
+        plan.begin = l.begin;
+        plan.count = l.count + r.count;
+        float inner = std::numeric_limits<float>::infinity();
+        for (int k = 1; k < N; ++k)
+            if (l.forest[k] + r.forest[N - k] < inner) {
+                inner = l.forest[k] + r.forest[N - k];
+                plan.nodeSplit = uint8_t(k);
             }
-            const Plan &l = nodes_[node.first], &r = nodes_[node.first + 1];
-            plan.begin = l.begin;
-            plan.count = l.count + r.count;
-            float inner = std::numeric_limits<float>::infinity();
-            for (int k = 1; k < N; ++k)
-                if (l.forest[k] + r.forest[N - k] < inner) {
-                    inner = l.forest[k] + r.forest[N - k];
-                    plan.nodeSplit = uint8_t(k);
+        inner += config_.traversalCost * area;
+        const uint32_t blocks = blocksOf(plan.count);
+        const float leaf = blocks <= maxMergedBlocks ? config_.intersectionCost * float(blocks) * area
+                                                     : std::numeric_limits<float>::infinity();
+        plan.leaf = leaf <= inner;
+        plan.slot = plan.leaf ? leaf : inner;
+        plan.forest[1] = plan.slot;
+        plan.split[1] = 0;
+        for (int j = 2; j <= N; ++j) {
+            plan.forest[j] = plan.slot;
+            plan.split[j] = 0;
+            for (int k = 1; k < j; ++k)
+                if (l.forest[k] + r.forest[j - k] < plan.forest[j]) {
+                    plan.forest[j] = l.forest[k] + r.forest[j - k];
+                    plan.split[j] = uint8_t(k);
                 }
-            inner += config_.traversalCost * area;
-            const uint32_t blocks = blocksOf(plan.count);
-            const float leaf = blocks <= maxMergedBlocks ? config_.intersectionCost * float(blocks) * area
-                                                         : std::numeric_limits<float>::infinity();
-            plan.leaf = leaf <= inner;
-            plan.slot = plan.leaf ? leaf : inner;
-            plan.forest[1] = plan.slot;
-            plan.split[1] = 0;
-            for (int j = 2; j <= N; ++j) {
-                plan.forest[j] = plan.slot;
-                plan.split[j] = 0;
-                for (int k = 1; k < j; ++k)
-                    if (l.forest[k] + r.forest[j - k] < plan.forest[j]) {
-                        plan.forest[j] = l.forest[k] + r.forest[j - k];
-                        plan.split[j] = uint8_t(k);
-                    }
-            }
         }
     }
 
     /// The binary nodes that take the `slots` child slots of subtree `index`, as the plan splits it.
     void expand(uint32_t index, int slots, uint32_t* children, int& count) const {
-        const Plan& plan = nodes_[index];
+        const Plan& plan = plans_[index];
         if (plan.split[slots] == 0) {
             children[count++] = index;
             return;
@@ -212,46 +273,27 @@ private:
         expand(left + 1, slots - plan.split[slots], children, count);
     }
 
-    NodeRef makeLeaf(uint32_t index) {
-        const Plan& plan = nodes_[index];
-        std::span<const uint32_t> prims(binary_.primIndices.data() + plan.begin, plan.count);
-        uint32_t count = 0;
-        const uint32_t first = emitLeaf_(prims, count);
-        return NodeRef::leaf(first, count);
-    }
-
-    void fillNode(uint32_t wideIndex, uint32_t binaryIndex) {
-        uint32_t children[N];
-        int childCount = 0;
-        const uint32_t left = binary_.nodes[binaryIndex].first;
-        const int split = nodes_[binaryIndex].nodeSplit;
-        expand(left, split, children, childCount);
-        expand(left + 1, N - split, children, childCount);
-
-        writeWideNode<N>(
-            binary_, out_, wideIndex, children, childCount, [&](uint32_t b) { return nodes_[b].leaf; },
-            [&](uint32_t b) { return makeLeaf(b); }, [&](uint32_t w, uint32_t b) { fillNode(w, b); });
-    }
-
     const BinaryBvh& binary_;
-    const LeafEmitter& emitLeaf_;
     const BvhBuildConfig& config_;
-    WideBvh<N>& out_;
-    std::vector<Plan> nodes_;
+    UninitializedVector<Plan> plans_;
 };
 
 } // namespace
 
 template <int N>
-WideBvh<N> collapseBvh(const BinaryBvh& binary, const LeafEmitter& emitLeaf, const BvhBuildConfig& config) {
+WideBvh<N> collapseBvh(const BinaryBvh& binary, LeafWriter& leaves, const BvhBuildConfig& config) {
     WideBvh<N> out;
-    out.nodes.reserve(binary.nodes.size() / (N - 1) + 1);
-    if (config.collapse == CollapseMethod::Sah) SahCollapser<N>(binary, emitLeaf, config, out).run();
-    else GreedyCollapser<N>(binary, emitLeaf, out).run();
+    if (config.collapse == CollapseMethod::Sah) {
+        const SahShape<N> shape(binary, config);
+        WideTreeWriter<N, SahShape<N>>(binary, shape, leaves, out).run();
+    } else {
+        const GreedyShape<N> shape{binary};
+        WideTreeWriter<N, GreedyShape<N>>(binary, shape, leaves, out).run();
+    }
     return out;
 }
 
-template WideBvh<4> collapseBvh<4>(const BinaryBvh&, const LeafEmitter&, const BvhBuildConfig&);
-template WideBvh<8> collapseBvh<8>(const BinaryBvh&, const LeafEmitter&, const BvhBuildConfig&);
+template WideBvh<4> collapseBvh<4>(const BinaryBvh&, LeafWriter&, const BvhBuildConfig&);
+template WideBvh<8> collapseBvh<8>(const BinaryBvh&, LeafWriter&, const BvhBuildConfig&);
 
 } // namespace wideray

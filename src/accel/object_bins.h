@@ -10,6 +10,7 @@
 namespace wideray {
 
 constexpr int kMaxObjectBins = 64;
+constexpr size_t kInterleaveThreshold = 256;
 
 /// The SAH cost of `count` primitives in a box of half area `halfArea`, intersected in blocks.
 inline float sideCost(float halfArea, uint32_t count, uint32_t blockSize) {
@@ -74,7 +75,22 @@ struct ObjectBins {
     BuildBox box(int axis, int bin) const { return {lower[axis][bin], upper[axis][bin]}; }
 
     void add(const BuildRef* refs, size_t refCount, const ObjectBinMapping& mapping) {
-        for (size_t i = 0; i < refCount; ++i) {
+        if (refCount < kInterleaveThreshold) {
+            addEvery(refs, refCount, 1, mapping);
+            return;
+        }
+        // Neighbouring references mostly fall in the same bins (partitions keep them spatially
+        // sorted), which chains each bin update to the previous one through memory: odd and even
+        // references go to two bin sets, merged at the end.
+        ObjectBins odd(count);
+        addEvery(refs, refCount, 2, mapping);
+        odd.addEvery(refs + 1, refCount - 1, 2, mapping);
+        merge(odd);
+    }
+
+    /// Bins refs[0], refs[stride], ... (fewer than refCount).
+    void addEvery(const BuildRef* refs, size_t refCount, size_t stride, const ObjectBinMapping& mapping) {
+        for (size_t i = 0; i < refCount; i += stride) {
             const BuildBox box(refs[i]);
             alignas(16) int32_t bins[4];
             _mm_store_si128(reinterpret_cast<__m128i*>(bins), mapping.binOf(box.center2()));

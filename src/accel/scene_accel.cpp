@@ -62,6 +62,84 @@ WideBvh<N> joinBvhs(WideBvh<N> a, WideBvh<N> b) {
     return out;
 }
 
+/// A leaf's primitives, each once: spatial splits put parts of one triangle in sibling leaves, which
+/// the collapse may merge.
+class DistinctPrims {
+public:
+    DistinctPrims(std::span<const uint32_t> prims, bool mayRepeat) : prims_(prims) {
+        if (!mayRepeat) return;
+        if (prims.size() > kCapacity) {
+            heap_.assign(prims.begin(), prims.end());
+            std::sort(heap_.begin(), heap_.end());
+            prims_ = {heap_.data(), size_t(std::unique(heap_.begin(), heap_.end()) - heap_.begin())};
+            return;
+        }
+        std::copy(prims.begin(), prims.end(), local_);
+        std::sort(local_, local_ + prims.size());
+        prims_ = {local_, size_t(std::unique(local_, local_ + prims.size()) - local_)};
+    }
+    std::span<const uint32_t> get() const { return prims_; }
+
+private:
+    static constexpr size_t kCapacity = NodeRef::kMaxLeafItems * kBlockSize;
+    std::span<const uint32_t> prims_;
+    uint32_t local_[kCapacity];
+    std::vector<uint32_t> heap_;
+};
+
+/// Triangle leaves as blocks of kBlockSize triangles (unused lanes repeat the block's first
+/// triangle, with an invalid primId).
+class TriangleBlockWriter final : public LeafWriter {
+public:
+    TriangleBlockWriter(const TriangleMesh& mesh, bool mayRepeat, TriangleBlocks& blocks)
+        : mesh_(mesh), mayRepeat_(mayRepeat), blocks_(blocks) {}
+
+    uint32_t itemCount(std::span<const uint32_t> prims) const override {
+        return blocksFor(DistinctPrims(prims, mayRepeat_).get().size());
+    }
+    void allocate(size_t count) override { blocks_.resize(count); }
+    void write(std::span<const uint32_t> leafPrims, uint32_t first) const override {
+        const DistinctPrims distinct(leafPrims, mayRepeat_);
+        const std::span<const uint32_t> prims = distinct.get();
+        for (size_t base = 0; base < prims.size(); base += kBlockSize) {
+            TriangleBlock<kBlockSize>& block = blocks_[first++];
+            for (int lane = 0; lane < kBlockSize; ++lane) {
+                const bool used = base + lane < prims.size();
+                const uint32_t prim = used ? prims[base + lane] : prims[base];
+                const glm::uvec3& t = mesh_.triangles[prim];
+                const glm::vec3 &a = mesh_.positions[t.x], &b = mesh_.positions[t.y], &c = mesh_.positions[t.z];
+                block.v0x[lane] = a.x; block.v0y[lane] = a.y; block.v0z[lane] = a.z;
+                block.v1x[lane] = b.x; block.v1y[lane] = b.y; block.v1z[lane] = b.z;
+                block.v2x[lane] = c.x; block.v2y[lane] = c.y; block.v2z[lane] = c.z;
+                block.primId[lane] = used ? prim : kInvalidId;
+            }
+        }
+    }
+
+private:
+    static uint32_t blocksFor(size_t prims) { return uint32_t((prims + kBlockSize - 1) / kBlockSize); }
+
+    const TriangleMesh& mesh_;
+    bool mayRepeat_;
+    TriangleBlocks& blocks_;
+};
+
+/// User primitive leaves: one reference (geomId, primId) per item.
+class UserPrimWriter final : public LeafWriter {
+public:
+    UserPrimWriter(const std::vector<PrimRef>& refs, std::vector<PrimRef>& out) : refs_(refs), out_(out) {}
+
+    uint32_t itemCount(std::span<const uint32_t> prims) const override { return uint32_t(prims.size()); }
+    void allocate(size_t count) override { out_.resize(count); }
+    void write(std::span<const uint32_t> prims, uint32_t first) const override {
+        for (uint32_t p : prims) out_[first++] = refs_[p];
+    }
+
+private:
+    const std::vector<PrimRef>& refs_;
+    std::vector<PrimRef>& out_;
+};
+
 } // namespace
 
 std::vector<BuildRef> triangleRefs(const TriangleMesh& mesh) {
@@ -102,7 +180,7 @@ WideBvh<N> SceneAccel<N>::buildTrianglesAtBest(const TriangleMesh& mesh, const B
     if (config.quality != BuildQuality::High) return bvh;
     // Top-down splitting is greedy: on some meshes (Suzanne) the spatial splits that lower the cost
     // near the root raise it below. The high quality build is never worse than the fast one.
-    std::vector<TriangleBlock<kBlockSize>> spatialBlocks = std::move(blocks_);
+    TriangleBlocks spatialBlocks = std::move(blocks_);
     const size_t spatialReferences = triangleReferences_;
     blocks_.clear();
     triangleReferences_ = 0;
@@ -127,36 +205,10 @@ WideBvh<N> SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuil
     timings_.binarySeconds += secondsSince(start);
 
     start = std::chrono::steady_clock::now();
-    blocks_.reserve(mesh.triangles.size() / 2);
-    std::vector<uint32_t> unique;
-    LeafEmitter emit = [&](std::span<const uint32_t> prims, uint32_t& count) {
-        if (config.quality == BuildQuality::High) {
-            // Spatial splits put parts of one triangle in sibling leaves, which the collapse may merge.
-            unique.assign(prims.begin(), prims.end());
-            std::sort(unique.begin(), unique.end());
-            unique.erase(std::unique(unique.begin(), unique.end()), unique.end());
-            prims = unique;
-        }
-        triangleReferences_ += prims.size();
-        uint32_t first = uint32_t(blocks_.size());
-        count = uint32_t((prims.size() + kBlockSize - 1) / kBlockSize);
-        for (size_t base = 0; base < prims.size(); base += kBlockSize) {
-            TriangleBlock<kBlockSize> block;
-            for (int lane = 0; lane < kBlockSize; ++lane) {
-                bool used = base + lane < prims.size();
-                uint32_t prim = used ? prims[base + lane] : prims[base];
-                const glm::uvec3& t = mesh.triangles[prim];
-                const glm::vec3 &a = mesh.positions[t.x], &b = mesh.positions[t.y], &c = mesh.positions[t.z];
-                block.v0x[lane] = a.x; block.v0y[lane] = a.y; block.v0z[lane] = a.z;
-                block.v1x[lane] = b.x; block.v1y[lane] = b.y; block.v1z[lane] = b.z;
-                block.v2x[lane] = c.x; block.v2y[lane] = c.y; block.v2z[lane] = c.z;
-                block.primId[lane] = used ? prim : kInvalidId;
-            }
-            blocks_.push_back(block);
-        }
-        return first;
-    };
-    WideBvh<N> bvh = collapseBvh<N>(binary, emit, config);
+    TriangleBlockWriter writer(mesh, config.quality == BuildQuality::High, blocks_);
+    WideBvh<N> bvh = collapseBvh<N>(binary, writer, config);
+    triangleReferences_ = 0;
+    for (const TriangleBlock<kBlockSize>& block : blocks_) triangleReferences_ += size_t(block.count());
     timings_.collapseSeconds += secondsSince(start);
     return bvh;
 }
@@ -176,13 +228,8 @@ WideBvh<N> SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
     BvhBuildConfig userConfig = config;
     userConfig.blockSize = 1;
     BinaryBvh binary = buildBinaryBvh(std::move(buildRefs), userConfig);
-    LeafEmitter emit = [&](std::span<const uint32_t> leafPrims, uint32_t& count) {
-        uint32_t first = uint32_t(prims_.size());
-        for (uint32_t p : leafPrims) prims_.push_back(refs[p]);
-        count = uint32_t(leafPrims.size());
-        return first;
-    };
-    WideBvh<N> bvh = collapseBvh<N>(binary, emit, userConfig);
+    UserPrimWriter writer(refs, prims_);
+    WideBvh<N> bvh = collapseBvh<N>(binary, writer, userConfig);
     markUserLeaves(bvh);
     timings_.binarySeconds += secondsSince(start);
     return bvh;

@@ -31,7 +31,7 @@ public:
 
     SceneView<N> view() const;
     const WideBvh<N>& bvh() const { return bvh_; }
-    const std::vector<TriangleBlock<kBlockSize>>& blocks() const { return blocks_; }
+    const TriangleBlocks& blocks() const { return blocks_; }
     const SceneGeometry& geometry() const { return *geometry_; }
     const BuildTimings& timings() const { return timings_; }
     /// Triangles in leaf blocks: the triangle count, more where spatial splits put one in several leaves.
@@ -45,7 +45,7 @@ private:
     WideBvh<N> buildUser(const BvhBuildConfig& config);
 
     WideBvh<N> bvh_;
-    std::vector<TriangleBlock<kBlockSize>> blocks_;
+    TriangleBlocks blocks_;
     std::vector<PrimRef> prims_;
     std::shared_ptr<const SceneGeometry> geometry_;
     std::vector<const UserGeometry*> userGeometries_;  ///< indexed by geomId; null for triangle meshes

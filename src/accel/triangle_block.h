@@ -2,6 +2,7 @@
 // M triangles of a BVH leaf stored as structure of arrays, so that one ray tests all M at once.
 #include <cstdint>
 
+#include "core/default_init_allocator.h"
 #include "core/ray.h"
 
 namespace wideray {
@@ -23,5 +24,8 @@ struct alignas(16) TriangleBlock {
     }
 };
 static_assert(sizeof(TriangleBlock<4>) == 160);
+
+/// The leaf blocks of a BVH, sized before the collapse writes them in parallel.
+using TriangleBlocks = UninitializedVector<TriangleBlock<kBlockSize>>;
 
 } // namespace wideray

@@ -3,7 +3,6 @@
 // child boxes stored per axis (SoA) so that one SIMD operation tests all N children, and the inner
 // children of a node are stored next to each other in the node array.
 #include <cstdint>
-#include <functional>
 #include <span>
 #include <vector>
 
@@ -58,13 +57,23 @@ struct WideBvh {
     Bounds3f bounds;       ///< of the whole tree
 };
 
-/// Turns a leaf's primitive indices into leaf items and returns the first item's index; the item
-/// count is returned through `count` (at most NodeRef::kMaxLeafItems).
-using LeafEmitter = std::function<uint32_t(std::span<const uint32_t> prims, uint32_t& count)>;
+/// Turns the primitive indices of the wide tree's leaves into leaf items (triangle blocks, say) in an
+/// array the collapse sizes once it knows the total; leaves are written concurrently.
+class LeafWriter {
+public:
+    virtual ~LeafWriter() = default;
+    /// The items one leaf's primitives take (at most NodeRef::kMaxLeafItems).
+    virtual uint32_t itemCount(std::span<const uint32_t> prims) const = 0;
+    /// Sizes the item array for `count` items in all.
+    virtual void allocate(size_t count) = 0;
+    /// Writes one leaf's items from index `first` on; called concurrently for disjoint ranges.
+    virtual void write(std::span<const uint32_t> prims, uint32_t first) const = 0;
+};
 
 /// Collapses a binary BVH into an N-wide one (N = 4 or 8) as config.collapse says: the wide tree of
 /// least SAH cost (config's traversal and intersection costs, blocks of config.blockSize), or greedily.
+/// Parallel; the result does not depend on the thread count.
 template <int N>
-WideBvh<N> collapseBvh(const BinaryBvh& binary, const LeafEmitter& emitLeaf, const BvhBuildConfig& config);
+WideBvh<N> collapseBvh(const BinaryBvh& binary, LeafWriter& leaves, const BvhBuildConfig& config);
 
 } // namespace wideray
