@@ -55,6 +55,10 @@ struct BvhBuildConfig {
     /// country kitchen and the bunny: the same SAH cost as spatial splits everywhere, half the build
     /// time on the bunny.
     int spatialMinRefs = 256;
+    /// High quality, below this many triangles: the fast build is made too and kept if its wide tree
+    /// costs less. Above it, spatial splits won on every mesh measured (tests/test_bvh.cpp checks
+    /// the shared meshes), and the second build would add half the time.
+    size_t compareBuildsBelow = size_t(1) << 17;
 };
 
 /// The deepest a build goes; past kMedianDepth it splits at the object median, which bounds the depth.

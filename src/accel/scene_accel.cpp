@@ -177,9 +177,9 @@ SceneAccel<N>::SceneAccel(std::shared_ptr<const SceneGeometry> geometry, const B
 template <int N>
 WideBvh<N> SceneAccel<N>::buildTrianglesAtBest(const TriangleMesh& mesh, const BvhBuildConfig& config) {
     WideBvh<N> bvh = buildTriangles(mesh, config);
-    if (config.quality != BuildQuality::High) return bvh;
-    // Top-down splitting is greedy: on some meshes (Suzanne) the spatial splits that lower the cost
-    // near the root raise it below. The high quality build is never worse than the fast one.
+    if (config.quality != BuildQuality::High || mesh.triangles.size() > config.compareBuildsBelow) return bvh;
+    // Top-down splitting is greedy: on some small meshes (Suzanne) the spatial splits that lower the
+    // cost near the root raise it below; there the fast build is cheap to compare with.
     TriangleBlocks spatialBlocks = std::move(blocks_);
     const size_t spatialReferences = triangleReferences_;
     blocks_.clear();
