@@ -1,14 +1,17 @@
-// Renders: independent of the thread count, and stable against a stored reference image.
+// Renders: independent of the thread count, the kernel and the build quality, and stable against a
+// stored reference image.
 #include <gtest/gtest.h>
 
 #include <tbb/global_control.h>
 
 #include "core/fp_mode.h"
 #include "io/image_io.h"
+#include "io/mesh_framing.h"
 #include "render/renderer.h"
 #include "io/scene_parser.h"
 #include "backends/wideray_structure.h"
 #include "render_helpers.h"
+#include "test_data.h"
 
 namespace wideray {
 namespace {
@@ -95,6 +98,33 @@ TEST(Render, KernelsAndShadowCacheRenderTheReferenceImage) {
             if (cache && std::string(k) != "auto" && std::string(k) != "single") continue;
             EXPECT_TRUE(renderWith(k, cache).pixels == reference.pixels) << k << " cache " << cache;
         }
+}
+
+} // namespace
+} // namespace wideray
+
+namespace wideray {
+namespace {
+
+/// Spatial splits change the tree, never a hit: the same primitive at the same t, so the same image.
+TEST(Render, HighQualityBuildRendersTheSameImage) {
+    auto dir = sharedScenesDir();
+    if (!dir) GTEST_SKIP() << "needs ../shared/scenes (or WIDERAY_SCENES)";
+    FlushToZeroScope ftz;
+    Scene scene = loadSceneOrMesh((*dir / "crytek-sponza/sponza.obj").string(), 96, 72);
+    auto geometry = std::make_shared<const SceneGeometry>(scene);
+    RenderOptions options;
+    options.width = 96;
+    options.height = 72;
+    auto renderWith = [&](const char* quality) {
+        StructureOptions structure;
+        structure.quality = quality;
+        std::shared_ptr<const Structure> bvh = buildWideBvh(geometry, structure);
+        RenderStats stats;
+        return render(scene, *bvh->tracer({"auto"}), options, stats);
+    };
+    const Image fast = renderWith("fast"), high = renderWith("high");
+    EXPECT_TRUE(fast.pixels == high.pixels);
 }
 
 } // namespace

@@ -76,7 +76,8 @@ else
 fi
 
 # Bad command-line values are errors, and --help documents every command.
-for args in "render $work/good.json --size 0x10" "render $work/good.json --isa mmx" "render $work/good.json --spp 0" "render"; do
+for args in "render $work/good.json --size 0x10" "render $work/good.json --isa mmx" "render $work/good.json --spp 0" "render" \
+            "render $work/good.json --quality best" "info $work/good.json --quality medium"; do
   "$wideray" $args >/dev/null 2>&1; status=$?
   if [ $status -eq 0 ] || [ $status -ge 128 ]; then echo "FAIL '$args' exited $status"; failures=$((failures + 1)); else echo "ok   '$args' rejected"; fi
 done
@@ -84,6 +85,6 @@ for cmd in "" render info; do
   if ! "$wideray" $cmd --help >/dev/null; then echo "FAIL '$cmd --help'"; failures=$((failures + 1)); fi
 done
 
-passed=$(( 15 - failures ))
+passed=$(( 17 - failures ))
 echo "cli: $passed passed, $failures failed"
 [ $failures -eq 0 ]
