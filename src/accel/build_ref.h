@@ -73,6 +73,30 @@ struct BuildBox {
     }
 };
 
+/// One box per axis and bin, for the builders' bins. Raw registers rather than BuildBox, so that only
+/// the bins in use are ever initialized (small nodes use few).
+template <int MaxBins>
+struct AxisBinBoxes {
+    __m128 lower[3][MaxBins], upper[3][MaxBins];
+
+    void clear(int bins) {
+        for (int b = 0; b < bins; ++b)
+            for (int a = 0; a < 3; ++a) {
+                lower[a][b] = BuildBox().lower;
+                upper[a][b] = BuildBox().upper;
+            }
+    }
+    BuildBox box(int axis, int bin) const { return {lower[axis][bin], upper[axis][bin]}; }
+    void grow(int axis, int bin, const BuildBox& box) {
+        lower[axis][bin] = _mm_min_ps(lower[axis][bin], box.lower);
+        upper[axis][bin] = _mm_max_ps(upper[axis][bin], box.upper);
+    }
+    void merge(const AxisBinBoxes& other, int bins) {
+        for (int b = 0; b < bins; ++b)
+            for (int a = 0; a < 3; ++a) grow(a, b, other.box(a, b));
+    }
+};
+
 inline BuildRef makeBuildRef(const Bounds3f& b, uint32_t prim) { return {b.lower, prim, b.upper, 0}; }
 
 } // namespace wideray

@@ -57,22 +57,16 @@ struct ObjectSplit {
 };
 
 struct ObjectBins {
-    // Raw registers rather than BuildBox, so that only the bins in use are ever initialized.
-    __m128 lower[3][kMaxObjectBins], upper[3][kMaxObjectBins];
+    AxisBinBoxes<kMaxObjectBins> boxes;
     alignas(16) uint32_t counts[kMaxObjectBins][4];  ///< counts[bin][axis]
     int count;
 
     explicit ObjectBins(int binCount) : count(binCount) {
-        for (int b = 0; b < count; ++b) {
-            for (int a = 0; a < 3; ++a) {
-                lower[a][b] = BuildBox().lower;
-                upper[a][b] = BuildBox().upper;
-            }
-            _mm_store_si128(reinterpret_cast<__m128i*>(counts[b]), _mm_setzero_si128());
-        }
+        boxes.clear(count);
+        for (int b = 0; b < count; ++b) _mm_store_si128(reinterpret_cast<__m128i*>(counts[b]), _mm_setzero_si128());
     }
 
-    BuildBox box(int axis, int bin) const { return {lower[axis][bin], upper[axis][bin]}; }
+    BuildBox box(int axis, int bin) const { return boxes.box(axis, bin); }
 
     void add(const BuildRef* refs, size_t refCount, const ObjectBinMapping& mapping) {
         if (refCount < kInterleaveThreshold) {
@@ -95,20 +89,16 @@ struct ObjectBins {
             alignas(16) int32_t bins[4];
             _mm_store_si128(reinterpret_cast<__m128i*>(bins), mapping.binOf(box.center2()));
             for (int a = 0; a < 3; ++a) {
-                lower[a][bins[a]] = _mm_min_ps(lower[a][bins[a]], box.lower);
-                upper[a][bins[a]] = _mm_max_ps(upper[a][bins[a]], box.upper);
+                boxes.grow(a, bins[a], box);
                 ++counts[bins[a]][a];
             }
         }
     }
 
     void merge(const ObjectBins& other) {
+        boxes.merge(other.boxes, count);
         for (int b = 0; b < count; ++b)
-            for (int a = 0; a < 3; ++a) {
-                lower[a][b] = _mm_min_ps(lower[a][b], other.lower[a][b]);
-                upper[a][b] = _mm_max_ps(upper[a][b], other.upper[a][b]);
-                counts[b][a] += other.counts[b][a];
-            }
+            for (int a = 0; a < 3; ++a) counts[b][a] += other.counts[b][a];
     }
 
     ObjectSplit bestSplit(const ObjectBinMapping& mapping, uint32_t refCount, uint32_t blockSize) const {

@@ -51,27 +51,20 @@ struct SpatialSplit {
 };
 
 struct SpatialBins {
-    __m128 lower[3][kMaxSpatialBins], upper[3][kMaxSpatialBins];  // raw, as in ObjectBins
+    AxisBinBoxes<kMaxSpatialBins> boxes;
     alignas(16) uint32_t enter[kMaxSpatialBins][4];  ///< [bin][axis]: references starting there
     alignas(16) uint32_t exit[kMaxSpatialBins][4];   ///< [bin][axis]: references ending there
     int count;
 
     explicit SpatialBins(int binCount) : count(binCount) {
+        boxes.clear(count);
         for (int b = 0; b < count; ++b) {
-            for (int a = 0; a < 3; ++a) {
-                lower[a][b] = BuildBox().lower;
-                upper[a][b] = BuildBox().upper;
-            }
             _mm_store_si128(reinterpret_cast<__m128i*>(enter[b]), _mm_setzero_si128());
             _mm_store_si128(reinterpret_cast<__m128i*>(exit[b]), _mm_setzero_si128());
         }
     }
 
-    BuildBox box(int axis, int bin) const { return {lower[axis][bin], upper[axis][bin]}; }
-    void grow(int axis, int bin, const BuildBox& box) {
-        lower[axis][bin] = _mm_min_ps(lower[axis][bin], box.lower);
-        upper[axis][bin] = _mm_max_ps(upper[axis][bin], box.upper);
-    }
+    BuildBox box(int axis, int bin) const { return boxes.box(axis, bin); }
 
     void add(const BuildRef* refs, size_t refCount, const SpatialBinMapping& mapping, const TriangleSplitter& splitter) {
         for (size_t i = 0; i < refCount; ++i) {
@@ -92,18 +85,18 @@ struct SpatialBins {
                 for (int b = first[a]; b < last[a]; ++b) {
                     BuildBox left, right;
                     triangle.split(rest, a, mapping.position(a, b + 1), left, right);
-                    grow(a, b, left);
+                    boxes.grow(a, b, left);
                     rest = right;
                 }
-                grow(a, last[a], rest);
+                boxes.grow(a, last[a], rest);
             }
         }
     }
 
     void merge(const SpatialBins& other) {
+        boxes.merge(other.boxes, count);
         for (int b = 0; b < count; ++b)
             for (int a = 0; a < 3; ++a) {
-                grow(a, b, other.box(a, b));
                 enter[b][a] += other.enter[b][a];
                 exit[b][a] += other.exit[b][a];
             }
