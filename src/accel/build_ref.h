@@ -95,6 +95,10 @@ struct AxisBinBoxes {
         for (int b = 0; b < bins; ++b)
             for (int a = 0; a < 3; ++a) grow(a, b, other.box(a, b));
     }
+    /// The boxes of bins [0, bin] and (bin, bins) along `axis`.
+    void sides(int axis, int bin, int bins, BuildBox& left, BuildBox& right) const {
+        for (int b = 0; b < bins; ++b) (b <= bin ? left : right).grow(box(axis, b));
+    }
 };
 
 inline BuildRef makeBuildRef(const Bounds3f& b, uint32_t prim) { return {b.lower, prim, b.upper, 0}; }

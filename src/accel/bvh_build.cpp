@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <memory>
 #include <new>
+#include <optional>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_invoke.h>
@@ -43,8 +44,7 @@ struct RangeBounds {
     }
     void merge(const RangeBounds& other) {
         bounds.grow(other.bounds);
-        centroids.grow(other.centroids.lower);
-        centroids.grow(other.centroids.upper);
+        centroids.grow(other.centroids);
     }
 };
 
@@ -137,16 +137,17 @@ private:
         const ObjectBinMapping objectMapping(range.centroids, count, config_.binCount);
         ObjectBins objectBins(objectMapping.count);
         binObjects(range, objectMapping, objectBins);
-        const ObjectSplit object = objectBins.bestSplit(objectMapping, count, blockSize());
+        const ObjectSplit object = objectBins.bestSplit(objectMapping, blockSize());
         SpatialSplit spatial;
+        std::optional<SpatialBinMapping> spatialMapping;
         if (splitter_ && range.spare() > 0 && count >= uint32_t(config_.spatialMinRefs)) {
             BuildBox overlap = object.left;
             overlap.intersect(object.right);
             if (object.axis < 0 || overlap.halfArea() > config_.spatialOverlap * rootHalfArea_) {
-                const SpatialBinMapping spatialMapping(range.bounds, config_.spatialBinCount);
-                SpatialBins spatialBins(spatialMapping.count);
-                binSpatially(range, spatialMapping, spatialBins);
-                spatial = spatialBins.bestSplit(spatialMapping, blockSize());
+                spatialMapping.emplace(range.bounds, config_.spatialBinCount);
+                SpatialBins spatialBins(spatialMapping->count);
+                binSpatially(range, *spatialMapping, spatialBins);
+                spatial = spatialBins.bestSplit(*spatialMapping, blockSize());
                 if (spatial.axis >= 0 && spatial.leftCount + spatial.rightCount - count > range.spare()) spatial = {};
             }
         }
@@ -158,7 +159,7 @@ private:
                                     ? config_.traversalCost + config_.intersectionCost * bestCost / area
                                     : std::numeric_limits<float>::infinity();
         if (fitsLeaf && leafCost <= splitCost) return false;
-        if (spatial.cost < object.cost) splitSpatially(range, spatial, left, right);
+        if (spatial.cost < object.cost) splitSpatially(range, spatial, *spatialMapping, left, right);
         else if (object.axis >= 0) splitObjects(range, object, objectMapping, left, right);
         else splitAtMedian(range, left, right);
         return true;
@@ -213,8 +214,8 @@ private:
     /// clipped into a part on each side (the duplicates take spare capacity), unless putting one
     /// whole on one side costs less (Stich et al.'s reference unsplitting). Where rounding leaves one
     /// side empty, the references are split at the median instead.
-    void splitSpatially(const BuildRange& range, const SpatialSplit& split, BuildRange& left, BuildRange& right) {
-        const SpatialBinMapping mapping(range.bounds, config_.spatialBinCount);
+    void splitSpatially(const BuildRange& range, const SpatialSplit& split, const SpatialBinMapping& mapping,
+                        BuildRange& left, BuildRange& right) {
         const float position = mapping.position(split.axis, split.bin + 1);
         auto binOf = [&](__m128 p) {
             alignas(16) int32_t bins[4];
@@ -237,15 +238,15 @@ private:
         const float splitCost = leftArea * leftCount + rightArea * rightCount;
         for (BuildRef* r = across; r != above; ++r) {
             const BuildRef ref = *r;
-            BuildBox below, over;
-            splitter_->triangle(ref.prim).split(BuildBox(ref), split.axis, position, below, over);
             BuildBox leftWhole = split.left, rightWhole = split.right;
             leftWhole.grow(BuildBox(ref));
             rightWhole.grow(BuildBox(ref));
             const float allLeft = leftWhole.halfArea() * leftCount + rightArea * (rightCount - 1);
             const float allRight = leftArea * (leftCount - 1) + rightWhole.halfArea() * rightCount;
-            if (allLeft < splitCost && allLeft <= allRight) below = BuildBox(ref), over = BuildBox();
-            else if (allRight < splitCost) below = BuildBox(), over = BuildBox(ref);
+            BuildBox below, over;
+            if (allLeft < splitCost && allLeft <= allRight) below = BuildBox(ref);
+            else if (allRight < splitCost) over = BuildBox(ref);
+            else splitter_->triangle(ref.prim).split(BuildBox(ref), split.axis, position, below, over);
             if (below.empty() && over.empty()) below = BuildBox(ref);
             if (!below.empty()) below.storeInto(*lowerParts++ = ref);
             if (!over.empty()) over.storeInto(*upperParts++ = ref);

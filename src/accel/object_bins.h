@@ -17,6 +17,32 @@ inline float sideCost(float halfArea, uint32_t count, uint32_t blockSize) {
     return halfArea * float((count + blockSize - 1) / blockSize);
 }
 
+/// Sweeps the planes between the bins along one axis: visit(bin, cost, left, right) for each plane
+/// after `bin` with references on both sides, left and right their counts (leftAdd(b), rightAdd(b):
+/// what bin b adds to each side), cost the SAH cost of both sides.
+template <int MaxBins, class LeftAdd, class RightAdd, class Visit>
+void sweepPlanes(const AxisBinBoxes<MaxBins>& boxes, int axis, int bins, uint32_t blockSize, LeftAdd leftAdd,
+                 RightAdd rightAdd, Visit visit) {
+    std::array<float, MaxBins> rightCost;
+    std::array<uint32_t, MaxBins> rightCount;
+    BuildBox acc;
+    uint32_t n = 0;
+    for (int b = bins - 1; b > 0; --b) {
+        acc.grow(boxes.box(axis, b));
+        n += rightAdd(b);
+        rightCount[b] = n;
+        rightCost[b] = sideCost(acc.halfArea(), n, blockSize);
+    }
+    acc = BuildBox();
+    n = 0;
+    for (int b = 0; b < bins - 1; ++b) {
+        acc.grow(boxes.box(axis, b));
+        n += leftAdd(b);
+        if (n == 0 || rightCount[b + 1] == 0) continue;
+        visit(b, sideCost(acc.halfArea(), n, blockSize) + rightCost[b + 1], n, rightCount[b + 1]);
+    }
+}
+
 /// How centroids map to bins along each axis: bin = (center2 - offset) * scale, clamped. Fewer bins
 /// for fewer references (as Embree does): small nodes cost a short sweep, not a long one.
 struct ObjectBinMapping {
@@ -101,30 +127,16 @@ struct ObjectBins {
             for (int a = 0; a < 3; ++a) counts[b][a] += other.counts[b][a];
     }
 
-    ObjectSplit bestSplit(const ObjectBinMapping& mapping, uint32_t refCount, uint32_t blockSize) const {
+    ObjectSplit bestSplit(const ObjectBinMapping& mapping, uint32_t blockSize) const {
         ObjectSplit best;
         for (int a = 0; a < 3; ++a) {
             if (!mapping.splittable(a)) continue;
-            std::array<float, kMaxObjectBins> rightCost;
-            BuildBox acc;
-            uint32_t n = 0;
-            for (int b = count - 1; b > 0; --b) {
-                acc.grow(box(a, b));
-                n += counts[b][a];
-                rightCost[b] = sideCost(acc.halfArea(), n, blockSize);
-            }
-            acc = BuildBox();
-            n = 0;
-            for (int b = 0; b < count - 1; ++b) {
-                acc.grow(box(a, b));
-                n += counts[b][a];
-                if (n == 0 || n == refCount) continue;
-                const float cost = sideCost(acc.halfArea(), n, blockSize) + rightCost[b + 1];
+            auto binCount = [&](int b) { return counts[b][a]; };
+            sweepPlanes(boxes, a, count, blockSize, binCount, binCount, [&](int b, float cost, uint32_t, uint32_t) {
                 if (cost < best.cost) best = {a, b, cost, {}, {}};
-            }
+            });
         }
-        if (best.axis >= 0)
-            for (int b = 0; b < count; ++b) (b <= best.bin ? best.left : best.right).grow(box(best.axis, b));
+        if (best.axis >= 0) boxes.sides(best.axis, best.bin, count, best.left, best.right);
         return best;
     }
 };

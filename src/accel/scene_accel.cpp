@@ -68,12 +68,8 @@ class DistinctPrims {
 public:
     DistinctPrims(std::span<const uint32_t> prims, bool mayRepeat) : prims_(prims) {
         if (!mayRepeat) return;
-        if (prims.size() > kCapacity) {
-            heap_.assign(prims.begin(), prims.end());
-            std::sort(heap_.begin(), heap_.end());
-            prims_ = {heap_.data(), size_t(std::unique(heap_.begin(), heap_.end()) - heap_.begin())};
-            return;
-        }
+        // The collapse merges at most 4 blocks' worth of primitives into one leaf.
+        if (prims.size() > kCapacity) throw std::logic_error("SceneAccel: a leaf with more primitives than it can hold");
         std::copy(prims.begin(), prims.end(), local_);
         std::sort(local_, local_ + prims.size());
         prims_ = {local_, size_t(std::unique(local_, local_ + prims.size()) - local_)};
@@ -84,7 +80,6 @@ private:
     static constexpr size_t kCapacity = NodeRef::kMaxLeafItems * kBlockSize;
     std::span<const uint32_t> prims_;
     uint32_t local_[kCapacity];
-    std::vector<uint32_t> heap_;
 };
 
 /// Triangle leaves as blocks of kBlockSize triangles (unused lanes repeat the block's first
@@ -181,15 +176,12 @@ WideBvh<N> SceneAccel<N>::buildTrianglesAtBest(const TriangleMesh& mesh, const B
     // Top-down splitting is greedy: on some small meshes (Suzanne) the spatial splits that lower the
     // cost near the root raise it below; there the fast build is cheap to compare with.
     TriangleBlocks spatialBlocks = std::move(blocks_);
-    const size_t spatialReferences = triangleReferences_;
     blocks_.clear();
-    triangleReferences_ = 0;
     BvhBuildConfig fast = config;
     fast.quality = BuildQuality::Fast;
     WideBvh<N> objectBvh = buildTriangles(mesh, fast);
     if (wideBvhStats(objectBvh, config).sahCost < wideBvhStats(bvh, config).sahCost) return objectBvh;
     blocks_ = std::move(spatialBlocks);
-    triangleReferences_ = spatialReferences;
     return bvh;
 }
 
@@ -207,8 +199,6 @@ WideBvh<N> SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuil
     start = std::chrono::steady_clock::now();
     TriangleBlockWriter writer(mesh, config.quality == BuildQuality::High, blocks_);
     WideBvh<N> bvh = collapseBvh<N>(binary, writer, config);
-    triangleReferences_ = 0;
-    for (const TriangleBlock<kBlockSize>& block : blocks_) triangleReferences_ += size_t(block.count());
     timings_.collapseSeconds += secondsSince(start);
     return bvh;
 }
@@ -238,6 +228,13 @@ WideBvh<N> SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
 template <int N>
 SceneView<N> SceneAccel<N>::view() const {
     return {bvh_.nodes.data(), bvh_.root, {blocks_.data(), prims_.data(), userGeometries_.data()}};
+}
+
+template <int N>
+size_t SceneAccel<N>::triangleReferences() const {
+    size_t references = 0;
+    for (const TriangleBlock<kBlockSize>& block : blocks_) references += size_t(block.count());
+    return references;
 }
 
 template <int N>

@@ -35,7 +35,7 @@ public:
     const SceneGeometry& geometry() const { return *geometry_; }
     const BuildTimings& timings() const { return timings_; }
     /// Triangles in leaf blocks: the triangle count, more where spatial splits put one in several leaves.
-    size_t triangleReferences() const { return triangleReferences_; }
+    size_t triangleReferences() const;
     size_t bytes() const;
 
 private:
@@ -50,7 +50,6 @@ private:
     std::shared_ptr<const SceneGeometry> geometry_;
     std::vector<const UserGeometry*> userGeometries_;  ///< indexed by geomId; null for triangle meshes
     BuildTimings timings_;
-    size_t triangleReferences_ = 0;
 };
 
 /// One build reference per triangle of the mesh, the builder's input.

@@ -106,28 +106,13 @@ struct SpatialBins {
         SpatialSplit best;
         for (int a = 0; a < 3; ++a) {
             if (!mapping.splittable(a)) continue;
-            std::array<float, kMaxSpatialBins> rightCost;
-            std::array<uint32_t, kMaxSpatialBins> rightCount;
-            BuildBox acc;
-            uint32_t n = 0;
-            for (int b = count - 1; b > 0; --b) {
-                acc.grow(box(a, b));
-                n += exit[b][a];
-                rightCount[b] = n;
-                rightCost[b] = sideCost(acc.halfArea(), n, blockSize);
-            }
-            acc = BuildBox();
-            n = 0;
-            for (int b = 0; b < count - 1; ++b) {
-                acc.grow(box(a, b));
-                n += enter[b][a];
-                if (n == 0 || rightCount[b + 1] == 0) continue;
-                const float cost = sideCost(acc.halfArea(), n, blockSize) + rightCost[b + 1];
-                if (cost < best.cost) best = {a, b, cost, n, rightCount[b + 1], {}, {}};
-            }
+            sweepPlanes(
+                boxes, a, count, blockSize, [&](int b) { return enter[b][a]; }, [&](int b) { return exit[b][a]; },
+                [&](int b, float cost, uint32_t left, uint32_t right) {
+                    if (cost < best.cost) best = {a, b, cost, left, right, {}, {}};
+                });
         }
-        if (best.axis >= 0)
-            for (int b = 0; b < count; ++b) (b <= best.bin ? best.left : best.right).grow(box(best.axis, b));
+        if (best.axis >= 0) boxes.sides(best.axis, best.bin, count, best.left, best.right);
         return best;
     }
 };
