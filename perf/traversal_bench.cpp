@@ -60,10 +60,8 @@ void traverse(benchmark::State& state, Kernel<8> kernel, RayKind kind) {
 [[maybe_unused]] const bool registerKernels = [] {
     std::vector<std::pair<Kernel<8>, std::string>> kernels;
     const Isa isa = bestIsa();
-    for (const Kernel<8>& k : kernelTable<8>(isa).rows) {
-        const bool reference = std::string_view(k.name) == "scalar";  // baseline code, not the ISA's
-        if (k.available()) kernels.push_back({k, reference ? std::string(k.name) : std::string(k.name) + "_" + isaName(isa)});
-    }
+    for (const Kernel<8>& k : kernelTable<8>(isa).rows)
+        if (k.available()) kernels.push_back({k, std::string(k.name) + "_" + isaName(isa)});
     for (RayKind kind : {RayKind::Primary, RayKind::Diffuse})
         for (const auto& [kernel, name] : kernels)
             benchmark::RegisterBenchmark(("traversal/" + inputName() + "/" + rayKindName(kind) + "/" + name).c_str(),

@@ -70,11 +70,11 @@ def index_results(results):
     """(scene, ray kind, backend) -> {kernel label: record}; ours are labelled with the ISA when
     several ISAs were measured (bench --all-isas). Every kernel keeps the faster of its builds (ours:
     fast or high quality, Embree's: medium or high; the record's "quality")."""
-    isas = {r["isa"] for r in results if r["backend"] == "wideray" and r["kernel"] != "scalar"}
+    isas = {r["isa"] for r in results if r["backend"] == "wideray"}
     table = {}
     for r in results:
         label = r["kernel"]
-        if r["backend"] == "wideray" and len(isas) > 1 and r["kernel"] != "scalar":
+        if r["backend"] == "wideray" and len(isas) > 1:
             label = "%s (%s)" % (r["kernel"], r["isa"])
         records = table.setdefault((r["scene"], r["ray_kind"], r["backend"]), {})
         if label not in records or r["mrays_per_s"] > records[label]["mrays_per_s"]:

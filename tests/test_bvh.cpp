@@ -87,8 +87,9 @@ void checkWide(const TriangleMesh& mesh, CollapseMethod collapse = CollapseMetho
                     uint32_t prim = block.primId[lane];
                     ++seen[prim];
                     leafBoxes[prim].push_back(box);
-                    if (quality == BuildQuality::Fast)
+                    if (quality == BuildQuality::Fast) {
                         EXPECT_TRUE(box.contains(triangleBox(mesh, prim))) << "triangle " << prim << " outside its leaf box";
+                    }
                     const glm::uvec3& t = mesh.triangles[prim];
                     EXPECT_EQ(block.v1x[lane], mesh.positions[t.y].x);
                     EXPECT_EQ(block.v2z[lane], mesh.positions[t.z].z);

@@ -7,7 +7,7 @@
 #include "io/mesh_generators.h"
 #include "io/mesh_io.h"
 #include "accel/scene_accel.h"
-#include "kernels/reference_kernel.h"
+#include "kernels/kernel_registry.h"
 #include "ray_sets.h"
 #include "test_data.h"
 
@@ -38,8 +38,8 @@ void expectMatchesBruteForce(const TriangleMesh& mesh, size_t rayCount, uint32_t
     std::vector<Hit> hits(rays.size());
     std::vector<uint8_t> occluded(rays.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-        reference::intersect<N>(accel.view(), rays.data() + r.begin(), hits.data() + r.begin(), r.size(), nullptr);
-        reference::occluded<N>(accel.view(), rays.data() + r.begin(), occluded.data() + r.begin(), r.size());
+        referenceKernel<N>(Isa::Sse42).intersect(accel.view(), rays.data() + r.begin(), hits.data() + r.begin(), r.size(), nullptr);
+        referenceKernel<N>(Isa::Sse42).occluded(accel.view(), rays.data() + r.begin(), occluded.data() + r.begin(), r.size());
     });
     std::vector<Hit> expected(rays.size());
     tbb::parallel_for(size_t(0), rays.size(), [&](size_t i) { expected[i] = testing::bruteForceHit(mesh, rays[i]); });
@@ -88,8 +88,8 @@ TEST(Traversal, InvalidRaysMissAndAreNotOccluded) {
     };
     std::vector<Hit> hits(rays.size());
     std::vector<uint8_t> occluded(rays.size(), 1);
-    reference::intersect<8>(accel.view(), rays.data(), hits.data(), rays.size(), nullptr);
-    reference::occluded<8>(accel.view(), rays.data(), occluded.data(), rays.size());
+    referenceKernel<8>(Isa::Sse42).intersect(accel.view(), rays.data(), hits.data(), rays.size(), nullptr);
+    referenceKernel<8>(Isa::Sse42).occluded(accel.view(), rays.data(), occluded.data(), rays.size());
     for (size_t i = 0; i < rays.size(); ++i) {
         EXPECT_FALSE(hits[i].valid()) << "ray " << i;
         EXPECT_EQ(occluded[i], 0) << "ray " << i;
@@ -102,14 +102,14 @@ TEST(Traversal, TfarLimitsHitsAndOcclusion) {
     Ray below{0.25f, 1.0f, 0.25f, 0, -1, 0, 0, 0.999f}, reach{0.25f, 1.0f, 0.25f, 0, -1, 0, 0, 1.0f};
     Hit hit;
     uint8_t occ = 0;
-    reference::intersect<4>(accel.view(), &below, &hit, 1, nullptr);
+    referenceKernel<4>(Isa::Sse42).intersect(accel.view(), &below, &hit, 1, nullptr);
     EXPECT_FALSE(hit.valid());
-    reference::occluded<4>(accel.view(), &below, &occ, 1);
+    referenceKernel<4>(Isa::Sse42).occluded(accel.view(), &below, &occ, 1);
     EXPECT_EQ(occ, 0);
-    reference::intersect<4>(accel.view(), &reach, &hit, 1, nullptr);
+    referenceKernel<4>(Isa::Sse42).intersect(accel.view(), &reach, &hit, 1, nullptr);
     EXPECT_TRUE(hit.valid());
     EXPECT_EQ(hit.t, 1.0f);
-    reference::occluded<4>(accel.view(), &reach, &occ, 1);
+    referenceKernel<4>(Isa::Sse42).occluded(accel.view(), &reach, &occ, 1);
     EXPECT_EQ(occ, 1);
 }
 

@@ -87,13 +87,11 @@ std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, const std::stri
         if (!cpuSupports(isa) || (!allIsas && isa != bestIsa())) continue;
         for (const Kernel<N>& k : kernelTable<N>(isa).rows) {
             if (!k.available()) continue;
-            const bool reference = std::string_view(k.name) == "scalar";  // baseline code: measured once
-            if (reference && isa != bestIsa()) continue;
             auto trace = [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
                 if (h) k.intersect(view, r, h, n, nullptr);
                 else k.occluded(view, r, o, n);
             };
-            out.push_back({"wideray", k.name, reference ? "baseline" : isaName(isa), quality, k.embreeCounterpart, trace});
+            out.push_back({"wideray", k.name, isaName(isa), quality, k.embreeCounterpart, trace});
             // The shadow cache: one per task, so that each chunk of rays starts cold (as a renderer tile would).
             if (k.occludedCached)
                 out.push_back({"wideray", std::string(k.name) + "+cache", isaName(isa), quality, k.embreeCounterpart,

@@ -15,32 +15,71 @@ inline namespace WIDERAY_ISA {
 /// "Robust BVH Ray Traversal"), so that a box is never culled before a triangle inside it.
 constexpr float kRobustFarScale = 1.0f + 1.0f / 65536.0f;
 
+/// What the slab test needs of a ray (F = float) or of K rays (vfloat<K>): the reciprocal direction
+/// and org * rdir, the latter rounded outward by at least an ulp: up where it is subtracted at entry
+/// planes, down at exit planes. Then t = plane * rdir - org * rdir is one FMA per plane, and the
+/// rounding of org * rdir can only move an entry earlier or an exit later; the rounding of rdir is a
+/// relative error of t (it multiplies plane - org), which kRobustFarScale covers like the FMA's own.
+/// Zero direction components make infinite reciprocals: each plane's t is then an infinity of the
+/// right sign or NaN, and the NaN slabs drop out of the min/max.
+template <class F>
+struct SlabRay {
+    F rdx, rdy, rdz;
+    F upX, upY, upZ;        ///< org * rdir rounded up: subtracted at entry planes
+    F downX, downY, downZ;  ///< rounded down: subtracted at exit planes
+};
+
+template <class F>
+inline SlabRay<F> makeSlabRay(F ox, F oy, F oz, F rdx, F rdy, F rdz) {
+    using simd::abs;
+    // |x| * 2^-23 is at least an ulp of x (and exact), so x +- it rounds to at least one ulp away.
+    const F ulpScale(0x1p-23f);
+    F x = ox * rdx, y = oy * rdy, z = oz * rdz;
+    F ex = abs(x) * ulpScale, ey = abs(y) * ulpScale, ez = abs(z) * ulpScale;
+    return {rdx, rdy, rdz, x + ex, y + ey, z + ez, x - ex, y - ey, z - ez};
+}
+
+/// One ray's box test: its slab constants, and which of each axis' planes (WideNode::planes index
+/// 2 * axis + upper) is its near one, chosen once from the direction's signs.
 struct BoxRay {
-    float ox, oy, oz;
-    float rdx, rdy, rdz;
-    bool negX, negY, negZ;
+    SlabRay<float> slab;
+    int nearPlane[3], farPlane[3];
 };
 
 inline BoxRay makeBoxRay(float ox, float oy, float oz, float dx, float dy, float dz) {
-    return {ox, oy, oz, 1.0f / dx, 1.0f / dy, 1.0f / dz, dx < 0.0f || std::signbit(dx),
-            dy < 0.0f || std::signbit(dy), dz < 0.0f || std::signbit(dz)};
+    BoxRay r;
+    r.slab = makeSlabRay(ox, oy, oz, 1.0f / dx, 1.0f / dy, 1.0f / dz);
+    const float d[3] = {dx, dy, dz};
+    for (int a = 0; a < 3; ++a) {
+        const int negative = std::signbit(d[a]) ? 1 : 0;
+        r.nearPlane[a] = 2 * a + negative;
+        r.farPlane[a] = 2 * a + 1 - negative;
+    }
+    return r;
 }
 
-/// The slab test, the one every kernel runs: entry and exit distances of rays (origin o, reciprocal
-/// direction rd; scalars or vectors) through boxes given by their near and far planes. NaN slabs
-/// (0 * inf) drop out: min/max return their second operand.
+/// The slab test, the one every kernel runs: entry and exit distances of rays through boxes given by
+/// their near and far planes, one FMA per plane (see SlabRay). NaN slabs drop out: min/max return
+/// their second operand.
 template <class F>
 [[gnu::always_inline]] inline void slabInterval(const F& nearX, const F& farX, const F& nearY, const F& farY,
-                                                const F& nearZ, const F& farZ, const F& ox, const F& oy, const F& oz,
-                                                const F& rdx, const F& rdy, const F& rdz, const F& tnear,
+                                                const F& nearZ, const F& farZ, const SlabRay<F>& r, const F& tnear,
                                                 const F& tfar, F& tEntry, F& tExit) {
+    using simd::fmsub;
     using simd::max;
     using simd::min;
-    F tx0 = (nearX - ox) * rdx, tx1 = (farX - ox) * rdx;
-    F ty0 = (nearY - oy) * rdy, ty1 = (farY - oy) * rdy;
-    F tz0 = (nearZ - oz) * rdz, tz1 = (farZ - oz) * rdz;
+    F tx0 = fmsub(nearX, r.rdx, r.upX), tx1 = fmsub(farX, r.rdx, r.downX);
+    F ty0 = fmsub(nearY, r.rdy, r.upY), ty1 = fmsub(farY, r.rdy, r.downY);
+    F tz0 = fmsub(nearZ, r.rdz, r.upZ), tz1 = fmsub(farZ, r.rdz, r.downZ);
     tEntry = max(tx0, max(ty0, max(tz0, tnear)));
     tExit = min(tx1, min(ty1, min(tz1, tfar))) * F(kRobustFarScale);
+}
+
+/// The same slab constants broadcast to W lanes (one ray against W boxes).
+template <int W>
+inline SlabRay<simd::vfloat<W>> broadcast(const SlabRay<float>& r) {
+    using F = simd::vfloat<W>;
+    return {F(r.rdx), F(r.rdy), F(r.rdz), F(r.upX), F(r.upY), F(r.upZ), F(r.downX), F(r.downY), F(r.downZ)};
 }
 
 /// The traversal stack's sorted insert: `e` goes into stack[base, sp), kept farthest first by
@@ -58,18 +97,18 @@ template <class Entry>
 template <int N, int W>
 inline uint32_t intersectChildren(const WideNode<N>& node, const BoxRay& r, float tnear, float tfar,
                                   float* tEntryOut) {
-    const float* nx = r.negX ? node.upperX : node.lowerX;
-    const float* fx = r.negX ? node.lowerX : node.upperX;
-    const float* ny = r.negY ? node.upperY : node.lowerY;
-    const float* fy = r.negY ? node.lowerY : node.upperY;
-    const float* nz = r.negZ ? node.upperZ : node.lowerZ;
-    const float* fz = r.negZ ? node.lowerZ : node.upperZ;
+    const float* planes = node.lowerX;  // the six plane arrays, N floats each (WideNode::planes)
+    const float* nx = planes + r.nearPlane[0] * N;
+    const float* fx = planes + r.farPlane[0] * N;
+    const float* ny = planes + r.nearPlane[1] * N;
+    const float* fy = planes + r.farPlane[1] * N;
+    const float* nz = planes + r.nearPlane[2] * N;
+    const float* fz = planes + r.farPlane[2] * N;
     if constexpr (W == 1) {
         uint32_t mask = 0;
         for (int i = 0; i < N; ++i) {
             float tEntry, tExit;
-            slabInterval(nx[i], fx[i], ny[i], fy[i], nz[i], fz[i], r.ox, r.oy, r.oz, r.rdx, r.rdy, r.rdz, tnear, tfar,
-                         tEntry, tExit);
+            slabInterval(nx[i], fx[i], ny[i], fy[i], nz[i], fz[i], r.slab, tnear, tfar, tEntry, tExit);
             tEntryOut[i] = tEntry;
             mask |= uint32_t(tEntry <= tExit) << i;
         }
@@ -77,12 +116,12 @@ inline uint32_t intersectChildren(const WideNode<N>& node, const BoxRay& r, floa
     } else {
         static_assert(N % W == 0);
         using F = simd::vfloat<W>;
+        const SlabRay<F> slab = broadcast<W>(r.slab);
         uint32_t mask = 0;
         for (int c = 0; c < N; c += W) {
             F tEntry, tExit;
             slabInterval(F::load(nx + c), F::load(fx + c), F::load(ny + c), F::load(fy + c), F::load(nz + c),
-                         F::load(fz + c), F(r.ox), F(r.oy), F(r.oz), F(r.rdx), F(r.rdy), F(r.rdz), F(tnear), F(tfar),
-                         tEntry, tExit);
+                         F::load(fz + c), slab, F(tnear), F(tfar), tEntry, tExit);
             tEntry.store(tEntryOut + c);
             mask |= simd::movemask(tEntry <= tExit) << c;
         }

@@ -2,7 +2,6 @@
 // kernels/isa/ defines WIDERAY_ISA (the namespace) and WIDERAY_ISA_TABLE (the table's name) and
 // includes this file with its ISA's compiler flags.
 #include "kernels/kernel_registry.h"
-#include "kernels/reference_kernel.h"
 #include "kernels/traverse_large_packet.h"
 #include "kernels/traverse_stream.h"
 
@@ -10,25 +9,27 @@ namespace wideray {
 inline namespace WIDERAY_ISA {
 namespace {
 
-template <int N>
+/// One ray at a time: NodeW children and TriW triangles per box and triangle test. NodeW = TriW = 1
+/// is the reference (plain scalar loops).
+template <int N, int NodeW, int TriW>
 void singleIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
     for (size_t i = 0; i < count; ++i) {
         TraversalCost cost;
         Hit hit;
         hit.t = rays[i].tfar;
-        traceSingle<N, kNodeSimdWidth<N>, kBlockSize, false>(scene, rays[i], hit, cost);
+        traceSingle<N, NodeW, TriW, false>(scene, rays[i], hit, cost);
         hits[i] = hit.valid() ? hit : Hit{};
         if (costs) costs[i] = cost;
     }
 }
 
-template <int N>
+template <int N, int NodeW, int TriW>
 void singleOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count) {
     for (size_t i = 0; i < count; ++i) {
         TraversalCost cost;
         Hit hit;
         hit.t = rays[i].tfar;
-        occluded[i] = traceSingle<N, kNodeSimdWidth<N>, kBlockSize, true>(scene, rays[i], hit, cost) ? 1 : 0;
+        occluded[i] = traceSingle<N, NodeW, TriW, true>(scene, rays[i], hit, cost) ? 1 : 0;
     }
 }
 
@@ -134,10 +135,11 @@ Kernel<N> packetKernel(const char* name, const char* description, const char* co
 template <int N>
 KernelTable<N> makeTable() {
     return {{{
-        {"scalar", "the reference: one ray, plain loops over the children and the triangles, baseline ISA",
-         "rtcIntersect1", Isa::Sse42, &reference::intersect<N>, &reference::occluded<N>},
+        {"scalar", "the reference: one ray, plain loops over the children and the triangles",
+         "rtcIntersect1", Isa::Sse42, &singleIntersect<N, 1, 1>, &singleOccluded<N, 1, 1>},
         {"single", "one ray, SIMD box test of all children, SIMD test of a leaf's 4-triangle blocks", "rtcIntersect1",
-         Isa::Sse42, &singleIntersect<N>, &singleOccluded<N>, &singleOccludedCached<N>},
+         Isa::Sse42, &singleIntersect<N, kNodeSimdWidth<N>, kBlockSize>,
+         &singleOccluded<N, kNodeSimdWidth<N>, kBlockSize>, &singleOccludedCached<N>},
         packetKernel<N, 4>("packet4", "4 rays (2x2 pixels) walk the tree together", "rtcIntersect4", Isa::Sse42),
         packetKernel<N, 8>("packet8", "8 rays (4x2 pixels) walk the tree together", "rtcIntersect8", Isa::Avx2),
         packetKernel<N, 16>("packet16", "16 rays (4x4 pixels) walk the tree together", "rtcIntersect16", Isa::Avx512),

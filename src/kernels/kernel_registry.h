@@ -41,7 +41,8 @@ struct Kernel {
     bool available() const { return intersect != nullptr; }
 };
 
-/// Every kernel; rows[0] is the scalar reference (compiled for the baseline ISA in every table).
+/// Every kernel; rows[0] is the scalar reference, compiled for the table's ISA like the rest: the
+/// kernels of a table reproduce its reference bit for bit.
 template <int N>
 struct KernelTable {
     static constexpr size_t kCount = 8;
@@ -68,6 +69,12 @@ KernelTable<N> kernelTable(Isa isa) {
     case Isa::Sse42: break;
     }
     return sse42KernelTable<N>();
+}
+
+/// The scalar reference of an ISA.
+template <int N>
+Kernel<N> referenceKernel(Isa isa) {
+    return kernelTable<N>(isa).rows[0];
 }
 
 } // namespace wideray

@@ -1,6 +1,6 @@
 #pragma once
 // What a kernel knows of the rays it traces: one ray's precomputed box and triangle test, or a
-// packet of K rays in SIMD registers (origins, reciprocal directions, the watertight test's axes)
+// packet of K rays in SIMD registers (origins, slab test constants, the watertight test's axes)
 // with their closest hits so far.
 #include <cstdint>
 
@@ -25,7 +25,8 @@ inline SingleRayState makeSingleRayState(const Ray& ray) {
 
 template <int K>
 struct PacketRay {
-    vfloat<K> ox, oy, oz, rdx, rdy, rdz, tnear;
+    vfloat<K> ox, oy, oz, tnear;
+    SlabRay<vfloat<K>> slab;
     vbool<K> negX, negY, negZ;
     WatertightRay<vfloat<K>, vint<K>> woop;
     // Coherent packets usually share the direction octant and the dominant axes; then planes and
@@ -96,8 +97,8 @@ inline vbool<K> loadPacket(const Ray* rays, int count, PacketRay<K>& p, PacketHi
     const F one(1.0f);
     Dx = select(valid, Dx, zero); Dy = select(valid, Dy, zero); Dz = select(valid, Dz, one);
     p.ox = select(valid, Ox, zero); p.oy = select(valid, Oy, zero); p.oz = select(valid, Oz, zero);
-    p.rdx = one / Dx; p.rdy = one / Dy; p.rdz = one / Dz;
-    p.negX = p.rdx < zero; p.negY = p.rdy < zero; p.negZ = p.rdz < zero;
+    p.slab = makeSlabRay(p.ox, p.oy, p.oz, one / Dx, one / Dy, one / Dz);
+    p.negX = p.slab.rdx < zero; p.negY = p.slab.rdy < zero; p.negZ = p.slab.rdz < zero;
     p.tnear = select(valid, tnear, inf);
     p.woop = makeWatertightRay<F, vint<K>>(p.ox, p.oy, p.oz, Dx, Dy, Dz);
     h.t = select(valid, tfar, -inf);

@@ -110,7 +110,7 @@ struct LargePacket {
             int s = __builtin_ctzll(bits);
             const PacketRay<K>& p = packets[s];
             const F* o[3] = {&p.ox, &p.oy, &p.oz};
-            const F* rd[3] = {&p.rdx, &p.rdy, &p.rdz};
+            const F* rd[3] = {&p.slab.rdx, &p.slab.rdy, &p.slab.rdz};
             for (int a = 0; a < 3; ++a) {
                 oLo[a] = min(select(valid[s], *o[a], inf), oLo[a]);
                 oHi[a] = max(select(valid[s], *o[a], -inf), oHi[a]);

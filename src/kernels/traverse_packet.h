@@ -30,8 +30,7 @@ template <int K>
         nearZ = select(p.negZ, uz, lz); farZ = select(p.negZ, lz, uz);
     }
     F tEntry, tExit;
-    slabInterval(nearX, farX, nearY, farY, nearZ, farZ, p.ox, p.oy, p.oz, p.rdx, p.rdy, p.rdz, p.tnear, tfar, tEntry,
-                 tExit);
+    slabInterval(nearX, farX, nearY, farY, nearZ, farZ, p.slab, p.tnear, tfar, tEntry, tExit);
     return select(active & (tEntry <= tExit), tEntry, F(__builtin_huge_valf()));
 }
 

@@ -117,8 +117,8 @@ template <int K>
 inline void gatherPacket(const StreamWorkspace& ws, const ListChunk<K>& c, PacketRay<K>& p, PacketHit<K>& h) {
     using F = vfloat<K>;
     p.ox = c.fetch(ws.ox); p.oy = c.fetch(ws.oy); p.oz = c.fetch(ws.oz);
-    p.rdx = c.fetch(ws.rdx); p.rdy = c.fetch(ws.rdy); p.rdz = c.fetch(ws.rdz);
-    p.negX = p.rdx < F(0.0f); p.negY = p.rdy < F(0.0f); p.negZ = p.rdz < F(0.0f);
+    p.slab = makeSlabRay(p.ox, p.oy, p.oz, c.fetch(ws.rdx), c.fetch(ws.rdy), c.fetch(ws.rdz));
+    p.negX = p.slab.rdx < F(0.0f); p.negY = p.slab.rdy < F(0.0f); p.negZ = p.slab.rdz < F(0.0f);
     p.tnear = c.fetch(ws.tnear);
     h.t = c.fetch(ws.tfar);
 }

@@ -1,8 +1,9 @@
 #pragma once
 // Watertight ray/triangle intersection (Woop, Benthin, Wald 2013, "Watertight Ray/Triangle
 // Intersection", JCGT 2(1)). Written once for every width: F is float or vfloat<W>, and the lanes are
-// rays (packets) or triangles (one ray against a leaf block). All kernels run exactly this arithmetic,
-// with FMA contraction disabled, so t is bit-identical across scalar, packet and stream kernels.
+// rays (packets) or triangles (one ray against a leaf block). All kernels of an ISA run exactly this
+// arithmetic (FMA where the ISA has it, stated explicitly: the compiler never contracts on its own),
+// so t is bit-identical across the scalar reference, packet and stream kernels of one ISA.
 #include <cstdint>
 #include <type_traits>
 
@@ -84,19 +85,26 @@ inline void recomputeZeroEdges(F& U, F& V, F& W, const F& Ax, const F& Ay, const
 
 } // namespace detail
 
+/// How far the division-free distance test is widened (relative): more than the rounding of
+/// T * (1 / det) and of tfar * |det| together, so that it never rejects a hit that the exact test after
+/// the division accepts, and the answer does not depend on the order in which triangles are tested.
+constexpr float kDistanceTestSlack = 0x1p-20f;
+
 /// The test proper, on vertex coordinates relative to the ray origin and already permuted to the
 /// ray's (kx, ky, kz) axes: a = v0 - o, b = v1 - o, c = v2 - o. Returns the lanes where the ray hits
 /// with tnear <= t <= tfar, writing t, u and v there (u, v weight v1 and v2). Both faces are hit.
+/// The shear and T use FMA where the ISA has it; the edge functions U, V, W do not, since an FMA would
+/// round a shared edge differently for the two triangles that share it (the watertightness).
 template <class F, class B>
 [[gnu::always_inline]] inline B intersectWatertightPermuted(const F& sx, const F& sy, const F& sz, B valid, const F& akx, const F& aky,
                                      const F& akz, const F& bkx, const F& bky, const F& bkz, const F& ckx,
                                      const F& cky, const F& ckz, const F& tnear, const F& tfar, F& t, F& u, F& v) {
-    F Ax = akx - sx * akz;
-    F Ay = aky - sy * akz;
-    F Bx = bkx - sx * bkz;
-    F By = bky - sy * bkz;
-    F Cx = ckx - sx * ckz;
-    F Cy = cky - sy * ckz;
+    F Ax = fnmadd(sx, akz, akx);
+    F Ay = fnmadd(sy, akz, aky);
+    F Bx = fnmadd(sx, bkz, bkx);
+    F By = fnmadd(sy, bkz, bky);
+    F Cx = fnmadd(sx, ckz, ckx);
+    F Cy = fnmadd(sy, ckz, cky);
 
     F U = Cx * By - Cy * Bx;
     F V = Ax * Cy - Ay * Cx;
@@ -112,7 +120,18 @@ template <class F, class B>
     valid = andNot(valid, det == zero);
     if (none(valid)) return valid;
 
-    F T = U * (sz * akz) + V * (sz * bkz) + W * (sz * ckz);
+    // tnear <= T / det <= tfar without dividing (the paper's form: T against t * det with the sign of
+    // det), widened by kDistanceTestSlack; the division follows only for candidates that pass. T sums
+    // in det's order, so that where the vertices' sheared depths are equal (and exact), T is exactly
+    // that depth times det, and t exact.
+    F T = fmadd(W, sz * ckz, fmadd(V, sz * bkz, U * (sz * akz)));
+    F absDet = abs(det);
+    F signedT = bitXor(T, signBit(det));
+    F lo = tnear * absDet, hi = tfar * absDet;
+    const F slack(kDistanceTestSlack);
+    valid = valid & (signedT >= fnmadd(abs(lo), slack, lo)) & (signedT <= fmadd(abs(hi), slack, hi));
+    if (none(valid)) return valid;
+
     F rcpDet = F(1.0f) / det;
     F tHit = T * rcpDet;
     valid = valid & (tHit >= tnear) & (tHit <= tfar);

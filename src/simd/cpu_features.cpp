@@ -72,6 +72,13 @@ Isa bestIsa() {
     return Isa::Sse42;
 }
 
+std::vector<Isa> supportedIsas() {
+    std::vector<Isa> isas;
+    for (Isa isa : {Isa::Sse42, Isa::Avx2, Isa::Avx512})
+        if (cpuSupports(isa)) isas.push_back(isa);
+    return isas;
+}
+
 std::string cpuModelName() {
     unsigned regs[12];
     unsigned a, b, c, d;

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace wideray {
 
@@ -16,6 +17,8 @@ std::optional<Isa> parseIsa(std::string_view name);  ///< "sse42", "avx2", "avx5
 /// AVX-512 means F, VL, BW and DQ).
 bool cpuSupports(Isa isa);
 Isa bestIsa();
+/// Every ISA this CPU and OS run, from the baseline up.
+std::vector<Isa> supportedIsas();
 std::string cpuModelName();
 
 } // namespace wideray

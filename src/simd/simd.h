@@ -35,6 +35,18 @@ inline float bitXor(float a, float b) {
     std::memcpy(&r, &x, 4);
     return r;
 }
+/// a * b + c, a * b - c and c - a * b: fused (one rounding) where the ISA has FMA (AVX2, AVX-512),
+/// two roundings on the SSE4.2 baseline. Every width of one ISA rounds alike, which is what keeps each
+/// kernel bit-identical to the scalar reference of its own ISA.
+#if defined(__FMA__)
+inline float fmadd(float a, float b, float c) { return __builtin_fmaf(a, b, c); }
+inline float fmsub(float a, float b, float c) { return __builtin_fmaf(a, b, -c); }
+inline float fnmadd(float a, float b, float c) { return __builtin_fmaf(-a, b, c); }
+#else
+inline float fmadd(float a, float b, float c) { return a * b + c; }
+inline float fmsub(float a, float b, float c) { return a * b - c; }
+inline float fnmadd(float a, float b, float c) { return c - a * b; }
+#endif
 inline float signBit(float a) { return std::signbit(a) ? -0.0f : 0.0f; }
 inline bool isFinite(float a) { return abs(a) < __builtin_huge_valf(); }
 inline bool any(bool b) { return b; }

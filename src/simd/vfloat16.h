@@ -77,6 +77,9 @@ inline vfloat16 bitXor(vfloat16 a, vfloat16 b) {
     return _mm512_castsi512_ps(_mm512_xor_si512(_mm512_castps_si512(a.m), _mm512_castps_si512(b.m)));
 }
 inline vfloat16 select(vbool16 m, vfloat16 a, vfloat16 b) { return _mm512_mask_blend_ps(m.m, b.m, a.m); }
+inline vfloat16 fmadd(vfloat16 a, vfloat16 b, vfloat16 c) { return _mm512_fmadd_ps(a.m, b.m, c.m); }
+inline vfloat16 fmsub(vfloat16 a, vfloat16 b, vfloat16 c) { return _mm512_fmsub_ps(a.m, b.m, c.m); }
+inline vfloat16 fnmadd(vfloat16 a, vfloat16 b, vfloat16 c) { return _mm512_fnmadd_ps(a.m, b.m, c.m); }
 // The masked forms: GCC 12 warns that the unmasked ones read an uninitialized source.
 inline vfloat16 gather(const float* base, vint16 index) {
     return _mm512_mask_i32gather_ps(_mm512_setzero_ps(), 0xFFFF, index.m, base, 4);

@@ -1,6 +1,9 @@
 #pragma once
 // 4-wide SSE4.2 vectors: vfloat4, vint4, vbool4.
 #include <nmmintrin.h>
+#if defined(__FMA__)
+#include <immintrin.h>
+#endif
 
 #include <cstdint>
 
@@ -77,6 +80,15 @@ inline vfloat4 abs(vfloat4 a) { return _mm_andnot_ps(_mm_set1_ps(-0.0f), a.m); }
 inline vfloat4 signBit(vfloat4 a) { return _mm_and_ps(a.m, _mm_set1_ps(-0.0f)); }
 inline vfloat4 bitXor(vfloat4 a, vfloat4 b) { return _mm_xor_ps(a.m, b.m); }
 inline vfloat4 select(vbool4 m, vfloat4 a, vfloat4 b) { return _mm_blendv_ps(b.m, a.m, m.m); }
+#if defined(__FMA__)
+inline vfloat4 fmadd(vfloat4 a, vfloat4 b, vfloat4 c) { return _mm_fmadd_ps(a.m, b.m, c.m); }
+inline vfloat4 fmsub(vfloat4 a, vfloat4 b, vfloat4 c) { return _mm_fmsub_ps(a.m, b.m, c.m); }
+inline vfloat4 fnmadd(vfloat4 a, vfloat4 b, vfloat4 c) { return _mm_fnmadd_ps(a.m, b.m, c.m); }
+#else
+inline vfloat4 fmadd(vfloat4 a, vfloat4 b, vfloat4 c) { return a * b + c; }
+inline vfloat4 fmsub(vfloat4 a, vfloat4 b, vfloat4 c) { return a * b - c; }
+inline vfloat4 fnmadd(vfloat4 a, vfloat4 b, vfloat4 c) { return c - a * b; }
+#endif
 inline vfloat4 gather(const float* base, vint4 index) {
     alignas(16) int32_t i[4];
     index.store(i);

@@ -76,6 +76,9 @@ inline vfloat8 abs(vfloat8 a) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), a
 inline vfloat8 signBit(vfloat8 a) { return _mm256_and_ps(a.m, _mm256_set1_ps(-0.0f)); }
 inline vfloat8 bitXor(vfloat8 a, vfloat8 b) { return _mm256_xor_ps(a.m, b.m); }
 inline vfloat8 select(vbool8 m, vfloat8 a, vfloat8 b) { return _mm256_blendv_ps(b.m, a.m, m.m); }
+inline vfloat8 fmadd(vfloat8 a, vfloat8 b, vfloat8 c) { return _mm256_fmadd_ps(a.m, b.m, c.m); }
+inline vfloat8 fmsub(vfloat8 a, vfloat8 b, vfloat8 c) { return _mm256_fmsub_ps(a.m, b.m, c.m); }
+inline vfloat8 fnmadd(vfloat8 a, vfloat8 b, vfloat8 c) { return _mm256_fnmadd_ps(a.m, b.m, c.m); }
 inline vfloat8 gather(const float* base, vint8 index) { return _mm256_i32gather_ps(base, index.m, 4); }
 inline vint8 gather(const int32_t* base, vint8 index) {
     return _mm256_i32gather_epi32(reinterpret_cast<const int*>(base), index.m, 4);
