@@ -5,6 +5,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 #include <thread>
 
 #include <fmt/core.h>
@@ -37,24 +38,52 @@ struct BenchArgs {
     bool allIsas = false;
     std::string backend = "both";
     std::string quality = "fast";  ///< our builds: fast, high or both
+    bool counters = false;         ///< also count our kernels' work per ray
 };
+
+constexpr size_t kChunk = 4096;  // rays per task: sixteen 16x16 tiles
 
 /// One way of tracing a batch: closest hits (hits != null) or occlusion.
 using TraceFn = std::function<void(const Ray* rays, size_t count, Hit* hits, uint8_t* occluded, bool coherent)>;
+
+/// Closest hits of a batch with each ray's traversal work (our kernels only).
+using CountFn = std::function<void(const Ray* rays, size_t count, Hit* hits, TraversalCost* costs)>;
 
 struct Candidate {
     std::string backend, kernel, isa;
     std::string quality;      ///< the build it traces: ours "fast" or "high"; Embree's "medium" or "high"
     std::string counterpart;  ///< the Embree kernel ours is compared with
     TraceFn trace;
+    CountFn count;            ///< null where the work is not counted
+};
+
+/// Work per ray, averaged over a ray set.
+struct WorkPerRay {
+    double nodes = 0, leaves = 0, primitives = 0;
 };
 
 struct Measurement {
     double mraysPerSecond = 0;
     size_t hits = 0;
+    std::optional<WorkPerRay> work;
 };
 
-constexpr size_t kChunk = 4096;  // rays per task: sixteen 16x16 tiles
+/// The kernel's work on the rays, traced once more with its counters on (not timed).
+WorkPerRay countWork(const CountFn& count, const std::vector<Ray>& rays) {
+    std::vector<Hit> hits(rays.size());
+    std::vector<TraversalCost> costs(rays.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), kChunk), [&](const tbb::blocked_range<size_t>& r) {
+        count(rays.data() + r.begin(), r.size(), hits.data() + r.begin(), costs.data() + r.begin());
+    });
+    WorkPerRay w;
+    for (const TraversalCost& c : costs) {
+        w.nodes += c.nodes;
+        w.leaves += c.leaves;
+        w.primitives += c.primitives;
+    }
+    const double n = double(std::max<size_t>(1, rays.size()));
+    return {w.nodes / n, w.leaves / n, w.primitives / n};
+}
 
 Measurement measure(const Candidate& c, const std::vector<Ray>& rays, bool anyHit, bool coherent, int runs) {
     std::vector<Hit> hits(anyHit ? 0 : rays.size());
@@ -91,7 +120,8 @@ std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, const std::stri
                 if (h) k.intersect(view, r, h, n, nullptr);
                 else k.occluded(view, r, o, n);
             };
-            out.push_back({"wideray", k.name, isaName(isa), quality, k.embreeCounterpart, trace});
+            auto count = [view, k](const Ray* r, size_t n, Hit* h, TraversalCost* costs) { k.intersect(view, r, h, n, costs); };
+            out.push_back({"wideray", k.name, isaName(isa), quality, k.embreeCounterpart, trace, count});
             // The shadow cache: one per task, so that each chunk of rays starts cold (as a renderer tile would).
             if (k.occludedCached)
                 out.push_back({"wideray", std::string(k.name) + "+cache", isaName(isa), quality, k.embreeCounterpart,
@@ -99,7 +129,8 @@ std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, const std::stri
                                    if (h) return;
                                    ShadowCache cache;
                                    k.occludedCached(view, r, o, n, cache);
-                               }});
+                               },
+                               nullptr});
         }
     }
     return out;
@@ -117,7 +148,8 @@ std::vector<Candidate> embreeCandidates(const Structure& embree, const std::stri
                            Coherence c = coherent ? Coherence::Coherent : Coherence::Incoherent;
                            if (h) tracer->intersect({r, n}, {h, n}, c);
                            else tracer->occluded({r, n}, {o, n}, c);
-                       }});
+                       },
+                       nullptr});
     }
     return out;
 }
@@ -173,8 +205,9 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
         for (const auto& [quality, structure] : embree)
             for (Candidate& c : embreeCandidates(*structure, quality)) candidates.push_back(std::move(c));
 
-    fmt::print("\n{:<28} {:<8} {:<8} {:<15} {:<8} {:<7} {:>10} {:>9} {:>10}\n", "scene", "rays", "backend", "kernel",
-               "isa", "build", "Mrays/s", "hits", "vs embree's faster build");
+    fmt::print("\n{:<28} {:<8} {:<8} {:<15} {:<8} {:<7} {:>10} {:>9} {}{}\n", "scene", "rays", "backend", "kernel",
+               "isa", "build", "Mrays/s", "hits", args.counters ? "nodes/ray leaves/ray prims/ray " : "",
+               "vs embree's faster build");
     for (const std::string& kindName : args.kinds) {
         RayKind kind = kindName == "primary" ? RayKind::Primary : kindName == "shadow" ? RayKind::Shadow : RayKind::Diffuse;
         const std::vector<Ray>& set = rays.of(kind);
@@ -186,6 +219,8 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
             if (!anyHit && c.kernel == "single+cache") continue;  // the cache is for shadow rays only
             fmt::print(stderr, "\r{} {} {} {}...            ", name, kindName, c.kernel, c.isa);
             Measurement m = measure(c, set, anyHit, coherent, args.runs);
+            // Occlusion entry points report no costs: counters are for closest-hit rays.
+            if (args.counters && c.count && !anyHit) m.work = countWork(c.count, set);
             if (c.backend == "embree" && m.mraysPerSecond > embreeBest[c.kernel].first)
                 embreeBest[c.kernel] = {m.mraysPerSecond, c.quality};
             measured.push_back({&c, m});
@@ -198,12 +233,21 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
                 std::string counterpart = anyHit ? std::string(c->counterpart).replace(3, 9, "Occluded") : c->counterpart;
                 versus = fmt::format("{:.2f}x {} ({})", m.mraysPerSecond / it->second.first, counterpart, it->second.second);
             }
-            fmt::print("{:<28} {:<8} {:<8} {:<15} {:<8} {:<7} {:>10.2f} {:>9} {}\n", name, kindName, c->backend, kernel,
-                       c->isa, c->quality, m.mraysPerSecond, m.hits, versus);
-            results.push_back({{"scene", name}, {"triangles", geometry->triangleCount()}, {"ray_kind", kindName},
-                               {"backend", c->backend}, {"kernel", kernel}, {"isa", c->isa}, {"quality", c->quality},
-                               {"workload", workload}, {"threads", threads}, {"rays", set.size()}, {"hits", m.hits},
-                               {"mrays_per_s", m.mraysPerSecond}, {"runs", args.runs}});
+            std::string work;
+            if (m.work) work = fmt::format("{:>9.1f} {:>10.2f} {:>10.1f} ", m.work->nodes, m.work->leaves, m.work->primitives);
+            else if (args.counters) work = fmt::format("{:>9} {:>10} {:>10} ", "-", "-", "-");
+            fmt::print("{:<28} {:<8} {:<8} {:<15} {:<8} {:<7} {:>10.2f} {:>9} {}{}\n", name, kindName, c->backend, kernel,
+                       c->isa, c->quality, m.mraysPerSecond, m.hits, work, versus);
+            nlohmann::json result = {{"scene", name}, {"triangles", geometry->triangleCount()}, {"ray_kind", kindName},
+                                     {"backend", c->backend}, {"kernel", kernel}, {"isa", c->isa}, {"quality", c->quality},
+                                     {"workload", workload}, {"threads", threads}, {"rays", set.size()}, {"hits", m.hits},
+                                     {"mrays_per_s", m.mraysPerSecond}, {"runs", args.runs}};
+            if (m.work) {
+                result["nodes_per_ray"] = m.work->nodes;
+                result["leaves_per_ray"] = m.work->leaves;
+                result["primitives_per_ray"] = m.work->primitives;
+            }
+            results.push_back(std::move(result));
         }
         std::fflush(stdout);
     }
@@ -235,6 +279,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                     "medium and high)")
         ->check(CLI::IsMember({"fast", "high", "both"}))
         ->capture_default_str();
+    cmd->add_flag("--counters", args->counters,
+                  "Also print our kernels' work per ray on closest-hit rays: inner nodes visited, leaves entered, "
+                  "primitives tested (JSON: nodes_per_ray, leaves_per_ray, primitives_per_ray)");
     cmd->add_flag("--all-isas", args->allIsas, "Measure our kernels for every ISA this CPU has, not only the best");
     cmd->add_option("--json", args->json, "Write the results as JSON (fields: machine, results, builds)");
     cmd->callback([args, &exitCode] {

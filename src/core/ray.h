@@ -30,8 +30,9 @@ struct Hit {
 
 /// Traversal work for one ray: the cost AOV and the kernel statistics.
 struct TraversalCost {
-    uint32_t nodes = 0;
-    uint32_t primitives = 0;
+    uint32_t nodes = 0;       ///< inner nodes whose children were tested
+    uint32_t leaves = 0;      ///< leaves entered
+    uint32_t primitives = 0;  ///< primitive tests (a triangle block counts its kBlockSize slots)
 };
 
 } // namespace wideray

@@ -19,6 +19,7 @@ struct SceneLeafIntersector {
     template <int TriW, bool AnyHit>
     [[gnu::always_inline]] bool single(NodeRef leaf, const SingleRayState& s, const Ray& ray, Hit& hit,
                                        TraversalCost& cost) const {
+        ++cost.leaves;
         if (leaf.isUserLeaf()) return intersectUserLeaf<AnyHit>(leaves, leaf, ray, hit, cost);
         for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b) {
             cost.primitives += kBlockSize;
@@ -33,6 +34,7 @@ struct SceneLeafIntersector {
     template <int K, bool AnyHit, class UserHits, class Cost>
     [[gnu::always_inline]] vbool<K> packet(NodeRef leaf, const PacketRay<K>& p, vbool<K> active, PacketHit<K>& h,
                                            UserHits& user, Cost& cost) const {
+        cost.enter(movemask(active));
         if (leaf.isUserLeaf()) return intersectUserLeafPacket<K, AnyHit>(leaves, leaf, active, h, user, cost);
         vbool<K> occluded(false);
         for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b) {

@@ -142,19 +142,23 @@ struct PacketUserHits {
 };
 
 /// The traversal work of each lane of a packet (the cost AOV): box tests of inner nodes the lane's
-/// subtree reached while it was active, and primitive tests. Without `Counting` it is empty and
+/// subtree reached while it was active, leaves it entered, and primitive tests. Without `Counting` it is empty and
 /// costs nothing.
 template <int K, bool Counting>
 struct PacketCost {
-    uint32_t nodes[Counting ? K : 1], primitives[Counting ? K : 1];
+    uint32_t nodes[Counting ? K : 1], leaves[Counting ? K : 1], primitives[Counting ? K : 1];
 
     PacketCost() {
         if constexpr (Counting)
-            for (int i = 0; i < K; ++i) nodes[i] = primitives[i] = 0;
+            for (int i = 0; i < K; ++i) nodes[i] = leaves[i] = primitives[i] = 0;
     }
     void visit(uint32_t lanes) {
         if constexpr (Counting)
             for (; lanes; lanes &= lanes - 1) ++nodes[__builtin_ctz(lanes)];
+    }
+    void enter(uint32_t lanes) {
+        if constexpr (Counting)
+            for (; lanes; lanes &= lanes - 1) ++leaves[__builtin_ctz(lanes)];
     }
     void test(uint32_t lanes, uint32_t count) {
         if constexpr (Counting)
@@ -163,12 +167,13 @@ struct PacketCost {
     void add(int lane, const TraversalCost& c) {
         if constexpr (Counting) {
             nodes[lane] += c.nodes;
+            leaves[lane] += c.leaves;
             primitives[lane] += c.primitives;
         }
     }
     void write(int count, TraversalCost* out) const {
         if constexpr (Counting)
-            for (int i = 0; i < count; ++i) out[i] = {nodes[i], primitives[i]};
+            for (int i = 0; i < count; ++i) out[i] = {nodes[i], leaves[i], primitives[i]};
     }
 };
 

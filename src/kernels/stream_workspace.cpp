@@ -8,7 +8,7 @@
 namespace wideray {
 namespace {
 
-constexpr int kFloatArrays = 13, kIntArrays = 5, kIdArrays = 5;
+constexpr int kFloatArrays = 13, kIntArrays = 5, kIdArrays = 6;
 
 void* allocate(size_t bytes) {
     void* p = std::aligned_alloc(64, (bytes + 63) / 64 * 64);
@@ -41,7 +41,7 @@ void StreamWorkspace::reserveRays(size_t n) {
     }
     keys = reinterpret_cast<uint64_t*>(block);
     block += stride * 8;
-    for (uint32_t** a : {&rayOf, &userGeomId, &userPrimId, &costNodes, &costPrimitives}) {
+    for (uint32_t** a : {&rayOf, &userGeomId, &userPrimId, &costNodes, &costLeaves, &costPrimitives}) {
         *a = reinterpret_cast<uint32_t*>(block);
         block += stride * 4;
     }

@@ -15,7 +15,7 @@ struct StreamWorkspace {
     int32_t* visits = nullptr;  ///< per ray of the list being split: its children and their order
     uint32_t* rayOf = nullptr;  ///< stream slot -> index in the caller's array
     uint32_t *userGeomId = nullptr, *userPrimId = nullptr;  ///< the ids of closest hits on user primitives
-    uint32_t *costNodes = nullptr, *costPrimitives = nullptr;  ///< traversal work, when counted
+    uint32_t *costNodes = nullptr, *costLeaves = nullptr, *costPrimitives = nullptr;  ///< traversal work, when counted
     bool countCost = false;
     uint64_t* keys = nullptr;   ///< sort keys: (octant, Morton code) << 32 | ray index
     uint8_t* valid = nullptr;   ///< per ray of the caller's array: whether it is traced at all

@@ -153,6 +153,10 @@ struct StreamLanes {
         if (ws.countCost)
             for (; lanes; lanes &= lanes - 1) ++ws.costNodes[slot[__builtin_ctz(lanes)]];
     }
+    void enter(uint32_t lanes) {
+        if (ws.countCost)
+            for (; lanes; lanes &= lanes - 1) ++ws.costLeaves[slot[__builtin_ctz(lanes)]];
+    }
     void test(uint32_t lanes, uint32_t count) {
         if (ws.countCost)
             for (; lanes; lanes &= lanes - 1) ws.costPrimitives[slot[__builtin_ctz(lanes)]] += count;
@@ -160,6 +164,7 @@ struct StreamLanes {
     void add(int lane, const TraversalCost& c) {
         if (!ws.countCost) return;
         ws.costNodes[slot[lane]] += c.nodes;
+        ws.costLeaves[slot[lane]] += c.leaves;
         ws.costPrimitives[slot[lane]] += c.primitives;
     }
 };
@@ -386,7 +391,7 @@ inline void traceStream(const SceneView<N>& scene, const Ray* rays, size_t count
     ws.countCost = costsOut != nullptr;
     if (costsOut) {
         for (size_t i = 0; i < count; ++i) costsOut[i] = TraversalCost{};
-        for (size_t s = 0; s < n; ++s) ws.costNodes[s] = ws.costPrimitives[s] = 0;
+        for (size_t s = 0; s < n; ++s) ws.costNodes[s] = ws.costLeaves[s] = ws.costPrimitives[s] = 0;
     }
     if (n == 0) return;
     traceStreamLists<N, K, AnyHit, Order, Leaves>(scene, rays, n, ws);
@@ -400,7 +405,7 @@ inline void traceStream(const SceneView<N>& scene, const Ray* rays, size_t count
                                                              : Hit{};
             hitsOut[i] = hit;
         }
-        if (costsOut) costsOut[i] = {ws.costNodes[s], ws.costPrimitives[s]};
+        if (costsOut) costsOut[i] = {ws.costNodes[s], ws.costLeaves[s], ws.costPrimitives[s]};
     }
 }
 

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# wideray bench --counters through the real executable, on a tiny image of the default scene: every
+# closest-hit result of ours carries its work per ray, occlusion results and Embree's carry none.
+set -eu
+wideray="$1" scene="$2"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+"$wideray" bench "$scene" --size 24x16 --runs 1 --threads 1 --counters --json "$work/bench.json" >"$work/out.txt" 2>/dev/null
+grep -q "nodes/ray leaves/ray prims/ray" "$work/out.txt"
+python3 - "$work/bench.json" <<'PY'
+import json, sys
+results = json.load(open(sys.argv[1]))["results"]
+fields = ("nodes_per_ray", "leaves_per_ray", "primitives_per_ray")
+counted = [r for r in results if r["backend"] == "wideray" and r["ray_kind"] != "shadow"]
+assert counted, "no closest-hit results of ours"
+for r in counted:
+    assert all(r.get(f, 0) > 0 for f in fields), r
+    assert r["leaves_per_ray"] <= r["primitives_per_ray"], r
+for r in results:
+    if r["backend"] == "embree" or r["ray_kind"] == "shadow":
+        assert not any(f in r for f in fields), r
+print("ok   bench --counters: %d results with work per ray" % len(counted))
+PY
