@@ -1,9 +1,12 @@
 // Closest-hit traversal of an 8-wide BVH, one kernel at a time on one thread: the scalar reference
 // and every kernel of the best ISA this CPU has (the rows of kernels/kernel_registry.h), on the primary and
 // diffuse rays of `wideray bench` (render/bench_rays.h) for the Stanford bunny, or a generated torus
-// when the shared meshes are absent.
+// when the shared meshes are absent. WIDERAY_TRAVERSAL_INPUT names another scene file or mesh (an
+// interior scene, say: `WIDERAY_TRAVERSAL_INPUT=scenes/sponza_interior.json wideray_perf`).
 #include <benchmark/benchmark.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,14 +30,20 @@ struct TraversalInputs {
     BenchRays rays;
 };
 
-std::string inputName() { return sharedMeshPath(kBunny) ? "bun_zipper" : "torus_160k"; }
+const char* chosenInput() { return std::getenv("WIDERAY_TRAVERSAL_INPUT"); }
+
+std::string inputName() {
+    if (const char* input = chosenInput()) return std::filesystem::path(input).stem().string();
+    return sharedMeshPath(kBunny) ? "bun_zipper" : "torus_160k";
+}
 
 /// Built on first use, so that listing or filtering the benchmarks loads nothing.
 const TraversalInputs& inputs() {
     static const TraversalInputs built = [] {
         auto bunny = sharedMeshPath(kBunny);
-        Scene scene = bunny ? sceneFromMesh(*bunny, kImageSize, kImageSize)
-                            : sceneFromMesh(makeTorus(1.0f, 0.3f, 400, 200), kImageSize, kImageSize);
+        Scene scene = chosenInput() ? loadSceneOrMesh(chosenInput(), kImageSize, kImageSize)
+                      : bunny       ? sceneFromMesh(*bunny, kImageSize, kImageSize)
+                                    : sceneFromMesh(makeTorus(1.0f, 0.3f, 400, 200), kImageSize, kImageSize);
         TraversalInputs in;
         in.bvh = std::make_shared<const WideBvhStructure<8>>(std::make_shared<const SceneGeometry>(scene));
         in.rays = makeBenchRays(scene, *in.bvh->tracer({"scalar"}), kImageSize, kImageSize);

@@ -43,12 +43,25 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
             alignas(64) float tEntry[N];
             uint32_t mask = intersectChildren<N, NodeW>(node, box, tnear, tfar(), tEntry);
             if (mask == 0) goto pop;
-            if ((mask & (mask - 1)) == 0) {
-                ref = node.child[__builtin_ctz(mask)];
+            const int first = __builtin_ctz(mask);
+            mask &= mask - 1;
+            if (mask == 0) {
+                ref = node.child[first];
                 continue;
             }
-            // Push the hit children sorted farthest first, then take the nearest.
+            const int second = __builtin_ctz(mask);
+            mask &= mask - 1;
+            if (mask == 0) {  // the most common case after one hit: no sort, one push
+                const bool secondNearer = tEntry[second] < tEntry[first];
+                const int nearer = secondNearer ? second : first, farther = secondNearer ? first : second;
+                stack[sp++] = {node.child[farther], tEntry[farther]};
+                ref = node.child[nearer];
+                continue;
+            }
+            // Three or more: push them sorted farthest first, then take the nearest.
             const int base = sp;
+            pushSorted(stack, base, sp, Entry{node.child[first], tEntry[first]});
+            pushSorted(stack, base, sp, Entry{node.child[second], tEntry[second]});
             for (; mask; mask &= mask - 1) {
                 int i = __builtin_ctz(mask);
                 pushSorted(stack, base, sp, Entry{node.child[i], tEntry[i]});
