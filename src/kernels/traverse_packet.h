@@ -116,20 +116,32 @@ inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int c
         while (!ref.isLeaf()) {
             const WideNode<N>& node = scene.nodes[ref.index()];
             cost.visit(movemask(active));
-            // Push the hit children sorted by their nearest ray's entry, farthest first, then continue
-            // with the nearest (any-hit: any occluder will do, so no order is kept).
+            // Continue with the child that the nearest ray enters first; push the others sorted by their
+            // nearest ray's entry, farthest first (any-hit: any occluder will do, so no order is kept).
+            // The nearest so far waits in registers rather than on the stack.
+            Entry nearest;
+            bool found = false;
             const int base = sp;
             for (int i = 0; i < N; ++i) {
                 if (node.child[i].bits == NodeRef::empty().bits) continue;
                 const F entry = packetChildEntry<N, K>(node, i, p, h.t, active);
                 if (none(entry < inf)) continue;
-                if constexpr (AnyHit) stack[sp++] = {entry, node.child[i], 0.0f};
-                else pushSorted(stack, base, sp, Entry{entry, node.child[i], reduceMin(entry)});
+                const Entry e{entry, node.child[i], AnyHit ? 0.0f : reduceMin(entry)};
+                if (!found) {
+                    nearest = e;
+                    found = true;
+                } else if (!AnyHit && e.distance < nearest.distance) {
+                    pushSorted(stack, base, sp, nearest);
+                    nearest = e;
+                } else if constexpr (AnyHit) {
+                    stack[sp++] = e;
+                } else {
+                    pushSorted(stack, base, sp, e);
+                }
             }
-            if (sp == base) goto pop;
-            --sp;
-            ref = stack[sp].ref;
-            active = stack[sp].entry < inf;
+            if (!found) goto pop;
+            ref = nearest.ref;
+            active = nearest.entry < inf;
         }
         {
             const vbool<K> occluded = leaves.template packet<K, AnyHit>(ref, p, active, h, user, cost);
