@@ -53,7 +53,7 @@ BENCH_SCENES ?= scenes/sponza_interior.json scenes/country_kitchen.json
 SCALING_MESHES ?= stanford-bunny/bun_zipper.ply crytek-sponza/sponza.obj
 SCALING_THREADS ?= $(shell seq 1 $(shell nproc))
 BENCH_COMMAND = $(BUILD)/wideray bench $(wildcard $(addprefix $(SCENES_DIR)/,$(BENCH_MESHES))) $(BENCH_SCENES) \
-  --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --quality both --json out/bench.json
+  --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --quality both --counters --json out/bench.json
 SCALING_COMMAND = $(BUILD)/wideray bench $(wildcard $(addprefix $(SCENES_DIR)/,$(SCALING_MESHES))) \
   --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --rays primary,diffuse
 SCALING_LOOP = for t in $(SCALING_THREADS); do $(SCALING_COMMAND) --threads $$t --json out/scaling-$$t-threads.json || exit 1; done

@@ -232,6 +232,41 @@ def kernel_section(bench, table):
     return "\n\n".join(parts)
 
 
+def work_section(bench, table):
+    """Our kernels' work per closest-hit ray (bench --counters), next to their speed."""
+    kinds = [k for k in RAY_KINDS if k != "shadow"]
+    if not any("nodes_per_ray" in r for r in bench["results"]):
+        return None
+    parts = ["## Work per ray\n\nOur kernels' traversal work on closest-hit rays (`wideray bench --counters`), "
+             "per ray: inner nodes whose children were box-tested, leaves entered, triangle slots tested (a "
+             "4-triangle block counts 4), for the build each kernel was fastest on. Packet kernels count a node "
+             "for every ray active when the packet visits it; packet256 counts interval tests of inner nodes for "
+             "every unfinished ray of the 256. The occlusion entry points count nothing."]
+    for scene in scenes_in_order(bench["results"]):
+        header = ["ours"]
+        for kind in kinds:
+            header += ["%s Mrays/s" % kind, "%s nodes" % kind, "%s leaves" % kind, "%s triangles" % kind]
+        labels = []
+        for kind in kinds:
+            for label in table.get((scene, kind, "wideray"), {}):
+                if label not in labels:
+                    labels.append(label)
+        labels.sort(key=lambda l: (OUR_KERNELS.index(l.split(" ")[0]) if l.split(" ")[0] in OUR_KERNELS else 99, l))
+        rows = []
+        for label in labels:
+            row = [label]
+            for kind in kinds:
+                r = table.get((scene, kind, "wideray"), {}).get(label)
+                if r and "nodes_per_ray" in r:
+                    row += [mrays(r["mrays_per_s"]), "%.1f" % r["nodes_per_ray"], "%.2f" % r["leaves_per_ray"],
+                            "%.1f" % r["primitives_per_ray"]]
+                else:
+                    row += ["", "", "", ""]
+            rows.append(row)
+        parts.append("### %s\n\n%s" % (scene, md_table(header, rows)))
+    return "\n\n".join(parts)
+
+
 def builds_by_scene(builds):
     out = OrderedDict()
     for b in builds:
@@ -333,8 +368,10 @@ def markdown(bench, scaling, commands, chart_name):
         METHOD,
         summary_section(bench, table, chart_name),
         kernel_section(bench, table),
+        work_section(bench, table),
         build_section(bench),
     ]
+    sections = [section for section in sections if section]
     if scaling:
         sections.append(scaling_section(scaling))
     return "\n\n".join(sections) + "\n"
