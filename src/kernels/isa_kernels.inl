@@ -55,7 +55,7 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
         bool blocked = false;
         TraversalCost cost;
         // The scene's leaf intersector, but remembering the block that blocked the ray.
-        traverseWide<N, kNodeSimdWidth<N>>(
+        traverseWide<N, kNodeSimdWidth<N>, false>(
             scene.nodes, scene.root, s.box, ray.tnear, [&] { return hit.t; },
             [&](NodeRef leaf) {
                 if (leaf.isUserLeaf()) return blocked = intersectUserLeaf<true>(leaves, leaf, ray, hit, cost);

@@ -21,9 +21,10 @@ constexpr int kStackSize = kMaxBvhDepth * (N - 1) + 1;
 template <int N>
 constexpr int kNodeSimdWidth = N < kMaxWidth ? N : kMaxWidth;
 
-/// Visits the leaves a ray reaches, nearest subtree first. `leaf(ref)` returns true to stop
-/// (any-hit); `tfar()` is the current culling distance.
-template <int N, int NodeW, class LeafFn, class TfarFn>
+/// Visits the leaves a ray reaches, nearest subtree first (with Ordered; otherwise in node order, which
+/// any-hit traversal prefers: any occluder will do). `leaf(ref)` returns true to stop (any-hit);
+/// `tfar()` is the current culling distance.
+template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn>
 inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, TfarFn tfar,
                          LeafFn leaf, TraversalCost& cost) {
     struct Entry {
@@ -46,6 +47,14 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
             const int first = __builtin_ctz(mask);
             mask &= mask - 1;
             if (mask == 0) {
+                ref = node.child[first];
+                continue;
+            }
+            if constexpr (!Ordered) {
+                for (; mask; mask &= mask - 1) {
+                    const int i = __builtin_ctz(mask);
+                    stack[sp++] = {node.child[i], tEntry[i]};
+                }
                 ref = node.child[first];
                 continue;
             }
@@ -80,7 +89,7 @@ inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray
                          TraversalCost& cost) {
     const Leaves leaves{scene.leaves};
     bool occluded = false;
-    traverseWide<N, NodeW>(
+    traverseWide<N, NodeW, !AnyHit>(
         scene.nodes, root, s.box, ray.tnear, [&] { return hit.t; },
         [&](NodeRef leaf) { return occluded = leaves.template single<TriW, AnyHit>(leaf, s, ray, hit, cost); }, cost);
     return occluded;
