@@ -2,6 +2,7 @@
 // What a kernel knows of the rays it traces: one ray's precomputed box and triangle test, or a
 // packet of K rays in SIMD registers (origins, slab test constants, the watertight test's axes)
 // with their closest hits so far.
+#include <cstddef>
 #include <cstdint>
 
 #include "core/ray.h"
@@ -74,20 +75,39 @@ struct PacketHit {
 
 constexpr int32_t kNoPrim = INT32_MAX;
 
+/// The eight fields of K rays as vectors, field by field in Ray's order (ox, oy, oz, dx, dy, dz, tnear,
+/// tfar): `ray(lane)` gives each lane's ray. Four rays at a time are transposed in registers (two 4x4
+/// transposes of their two halves), so that no vector is loaded from scalar stores.
+template <int K, class RayAt>
+[[gnu::always_inline]] inline void loadRayFields(RayAt ray, vfloat<K> fields[8]) {
+    static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, dy) == 4 * sizeof(float));
+    vfloat4 quarters[8][K / 4];
+    for (int q = 0; q < K / 4; ++q) {
+        __m128 lo[4], hi[4];
+        for (int j = 0; j < 4; ++j) {
+            const float* r = &ray(4 * q + j).ox;
+            lo[j] = _mm_loadu_ps(r);
+            hi[j] = _mm_loadu_ps(r + 4);
+        }
+        _MM_TRANSPOSE4_PS(lo[0], lo[1], lo[2], lo[3]);
+        _MM_TRANSPOSE4_PS(hi[0], hi[1], hi[2], hi[3]);
+        for (int f = 0; f < 4; ++f) {
+            quarters[f][q] = lo[f];
+            quarters[4 + f][q] = hi[f];
+        }
+    }
+    for (int f = 0; f < 8; ++f) fields[f] = fromQuarters<K>(quarters[f]);
+}
+
 /// Loads up to K rays; invalid and missing lanes get tnear = +inf, tfar = -inf and stay inactive.
 template <int K>
 inline vbool<K> loadPacket(const Ray* rays, int count, PacketRay<K>& p, PacketHit<K>& h) {
     using F = vfloat<K>;
-    alignas(64) float ox[K], oy[K], oz[K], dx[K], dy[K], dz[K], tn[K], tf[K];
-    for (int i = 0; i < K; ++i) {
-        const Ray& r = rays[i < count ? i : 0];
-        ox[i] = r.ox; oy[i] = r.oy; oz[i] = r.oz;
-        dx[i] = r.dx; dy[i] = r.dy; dz[i] = r.dz;
-        tn[i] = r.tnear; tf[i] = r.tfar;
-    }
+    F fields[8];
+    loadRayFields<K>([&](int lane) -> const Ray& { return rays[lane < count ? lane : 0]; }, fields);
     alignas(64) static constexpr int32_t kLane[16] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
-    F Ox = F::load(ox), Oy = F::load(oy), Oz = F::load(oz), Dx = F::load(dx), Dy = F::load(dy), Dz = F::load(dz);
-    F tnear = F::load(tn), tfar = F::load(tf);
+    F Ox = fields[0], Oy = fields[1], Oz = fields[2], Dx = fields[3], Dy = fields[4], Dz = fields[5];
+    F tnear = fields[6], tfar = fields[7];
     const F zero(0.0f), inf(__builtin_huge_valf());
     // isValidRay, lane by lane: finite origin and direction, a non-zero direction, tnear <= tfar.
     vbool<K> valid = (vint<K>::load(kLane) < vint<K>(count)) & isFinite(Ox) & isFinite(Oy) & isFinite(Oz) &

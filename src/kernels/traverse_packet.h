@@ -46,16 +46,29 @@ template <int N, int K>
 template <int K, bool AnyHit, class UserHits>
 inline void writePacketResults(const PacketHit<K>& h, const UserHits& user, uint32_t validBits, uint32_t occludedBits,
                                int count, Hit* hitsOut, uint8_t* occludedOut) {
+    if constexpr (AnyHit) {
+        for (int lane = 0; lane < count; ++lane) occludedOut[lane] = (validBits & occludedBits) >> lane & 1;
+        return;
+    }
     PacketLanes<K> lanes;
     lanes.store(h);
+    // Triangle hits and misses without branches (they interleave unpredictably at silhouettes); the
+    // rare user-primitive hits are patched after.
+    const uint32_t triangleBits = validBits & ~movemask(h.primId == vint<K>(kNoPrim));
+    uint32_t userBits = 0;
     for (int lane = 0; lane < count; ++lane) {
-        const bool valid = validBits >> lane & 1;
-        if constexpr (AnyHit) {
-            occludedOut[lane] = valid && (occludedBits >> lane & 1) ? 1 : 0;
-        } else {
-            const Hit hit = laneHit(lanes, user, lane);
-            hitsOut[lane] = valid && hit.valid() ? hit : Hit{};
-        }
+        const bool triangle = triangleBits >> lane & 1;
+        Hit& out = hitsOut[lane];
+        out.t = triangle ? lanes.t[lane] : __builtin_huge_valf();
+        out.u = triangle ? lanes.u[lane] : 0.0f;
+        out.v = triangle ? lanes.v[lane] : 0.0f;
+        out.primId = triangle ? uint32_t(lanes.prim[lane]) : kInvalidId;
+        out.geomId = triangle ? 0 : kInvalidId;
+        userBits |= uint32_t(!triangle && user.geomId(lane) != kInvalidId) << lane;
+    }
+    for (userBits &= validBits; userBits; userBits &= userBits - 1) {
+        const int lane = __builtin_ctz(userBits);
+        hitsOut[lane] = laneHit(lanes, user, lane);
     }
 }
 

@@ -88,6 +88,18 @@ template <int W> using vfloat = typename Types<W>::Float;
 template <int W> using vint = typename Types<W>::Int;
 template <int W> using vbool = typename Types<W>::Bool;
 
+/// A W-wide vector whose lanes [4j, 4j + 4) are quarters[j].
+template <int W>
+inline vfloat<W> fromQuarters(const vfloat4* quarters) {
+    if constexpr (W == 4) return quarters[0];
+#if defined(__AVX2__)
+    else if constexpr (W == 8) return fromQuarters8(quarters);
+#endif
+#if defined(__AVX512F__)
+    else if constexpr (W == 16) return fromQuarters16(quarters);
+#endif
+}
+
 } // namespace simd
 } // namespace WIDERAY_ISA
 } // namespace wideray

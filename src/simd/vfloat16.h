@@ -93,6 +93,12 @@ inline int compressStore(int32_t* out, vint16 values, vbool16 mask) {
     return __builtin_popcount(mask.m);
 }
 inline float reduceMin(vfloat16 a) { return _mm512_reduce_min_ps(a.m); }
+inline vfloat16 fromQuarters16(const vfloat4* q) {
+    __m512 v = _mm512_castps128_ps512(q[0].m);
+    v = _mm512_insertf32x4(v, q[1].m, 1);
+    v = _mm512_insertf32x4(v, q[2].m, 2);
+    return _mm512_insertf32x4(v, q[3].m, 3);
+}
 inline vbool16 isFinite(vfloat16 a) { return abs(a) < vfloat16(__builtin_huge_valf()); }
 
 } // namespace simd

@@ -89,6 +89,9 @@ inline float reduceMin(vfloat8 a) {
     m = _mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
     return _mm_cvtss_f32(m);
 }
+inline vfloat8 fromQuarters8(const vfloat4* q) {
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(q[0].m), q[1].m, 1);
+}
 inline vbool8 isFinite(vfloat8 a) { return abs(a) < vfloat8(__builtin_huge_valf()); }
 
 } // namespace simd
