@@ -55,15 +55,11 @@ inline size_t loadStream(const Ray* rays, size_t count, StreamWorkspace& ws) {
     sortStreamKeys(ws.keys, n);
     // Set up K rays at a time with the packet code (same arithmetic as every other kernel).
     for (size_t s = 0; s < n; s += K) {
-        alignas(64) float ox[K], oy[K], oz[K], dx[K], dy[K], dz[K];
         const int count = int(n - s < size_t(K) ? n - s : size_t(K));
-        for (int l = 0; l < K; ++l) {
-            const Ray& r = rays[uint32_t(ws.keys[s + (l < count ? l : 0)])];
-            ox[l] = r.ox; oy[l] = r.oy; oz[l] = r.oz;
-            dx[l] = r.dx; dy[l] = r.dy; dz[l] = r.dz;
-        }
         using F = vfloat<K>;
-        F Ox = F::load(ox), Oy = F::load(oy), Oz = F::load(oz), Dx = F::load(dx), Dy = F::load(dy), Dz = F::load(dz);
+        F fields[8];
+        loadRayFields<K>([&](int l) -> const Ray& { return rays[uint32_t(ws.keys[s + (l < count ? l : 0)])]; }, fields);
+        F Ox = fields[0], Oy = fields[1], Oz = fields[2], Dx = fields[3], Dy = fields[4], Dz = fields[5];
         auto woop = makeWatertightRay<F, vint<K>>(Ox, Oy, Oz, Dx, Dy, Dz);
         // The arrays have room for whole vectors (capacity is a multiple of 16).
         Ox.store(ws.ox + s); Oy.store(ws.oy + s); Oz.store(ws.oz + s);
