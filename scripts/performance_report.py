@@ -233,15 +233,15 @@ def kernel_section(bench, table):
 
 
 def work_section(bench, table):
-    """Our kernels' work per closest-hit ray (bench --counters), next to their speed."""
-    kinds = [k for k in RAY_KINDS if k != "shadow"]
+    """Our kernels' work per ray (bench --counters), next to their speed."""
+    kinds = RAY_KINDS
     if not any("nodes_per_ray" in r for r in bench["results"]):
         return None
-    parts = ["## Work per ray\n\nOur kernels' traversal work on closest-hit rays (`wideray bench --counters`), "
+    parts = ["## Work per ray\n\nOur kernels' traversal work (`wideray bench --counters`), "
              "per ray: inner nodes whose children were box-tested, leaves entered, triangle slots tested (a "
              "4-triangle block counts 4), for the build each kernel was fastest on. Packet kernels count a node "
              "for every ray active when the packet visits it; packet256 counts interval tests of inner nodes for "
-             "every unfinished ray of the 256. The occlusion entry points count nothing."]
+             "every unfinished ray of the 256. Shadow rays stop at the first occluder; `single+cache` is not counted."]
     for scene in scenes_in_order(bench["results"]):
         header = ["ours"]
         for kind in kinds:

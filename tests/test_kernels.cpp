@@ -51,12 +51,12 @@ void expectAllKernelsMatchReference(const SceneAccel<N>& accel, const std::vecto
         std::vector<Hit> expected(rays.size());
         std::vector<uint8_t> expectedOccluded(rays.size());
         referenceKernel<N>(isa).intersect(accel.view(), rays.data(), expected.data(), rays.size(), nullptr);
-        referenceKernel<N>(isa).occluded(accel.view(), rays.data(), expectedOccluded.data(), rays.size());
+        referenceKernel<N>(isa).occluded(accel.view(), rays.data(), expectedOccluded.data(), rays.size(), nullptr);
         for (const Kernel<N>& kernel : kernelsOf(kernelTable<N>(isa))) {
             std::vector<Hit> hits(rays.size());
             std::vector<uint8_t> occluded(rays.size(), 7);
             kernel.intersect(accel.view(), rays.data(), hits.data(), rays.size(), nullptr);
-            kernel.occluded(accel.view(), rays.data(), occluded.data(), rays.size());
+            kernel.occluded(accel.view(), rays.data(), occluded.data(), rays.size(), nullptr);
             size_t hitMismatches = 0, occlusionMismatches = 0;
             for (size_t i = 0; i < rays.size(); ++i) {
                 const Hit &a = hits[i], &b = expected[i];
@@ -237,7 +237,7 @@ namespace wideray {
 namespace {
 
 /// The cost AOV counts the chosen kernel's own work: every kernel fills per-ray costs without
-/// changing its hits, the single-ray kernels agree with each other, and the packet and stream
+/// changing its hits (or its occlusion answers), the single-ray kernels agree with each other, and the packet and stream
 /// kernels (which visit nodes for groups of rays) report work of their own.
 TEST(Kernels, CostsMeasureTheChosenKernel) {
     FlushToZeroScope ftz;
@@ -268,6 +268,18 @@ TEST(Kernels, CostsMeasureTheChosenKernel) {
             }
             EXPECT_EQ(changed, 0u) << kernel.name << " " << isaName(isa);
             EXPECT_EQ(uncounted, 0u) << kernel.name << " " << isaName(isa) << ": hits without counted tests";
+            // Occlusion counts too, without changing its answers: an occluded ray tested something.
+            std::vector<uint8_t> occludedPlain(rays.size()), occludedCounted(rays.size());
+            std::vector<TraversalCost> occlusionCosts(rays.size(), TraversalCost{777, 777, 777});
+            kernel.occluded(accel.view(), rays.data(), occludedPlain.data(), rays.size(), nullptr);
+            kernel.occluded(accel.view(), rays.data(), occludedCounted.data(), rays.size(), occlusionCosts.data());
+            EXPECT_TRUE(occludedPlain == occludedCounted) << kernel.name << " " << isaName(isa);
+            size_t occludedUncounted = 0;
+            for (size_t i = 0; i < rays.size(); ++i)
+                occludedUncounted += occludedCounted[i] && (occlusionCosts[i].primitives == 0 ||
+                                                            occlusionCosts[i].primitives == 777 ||
+                                                            occlusionCosts[i].leaves == 0);
+            EXPECT_EQ(occludedUncounted, 0u) << kernel.name << " " << isaName(isa) << ": occlusion without counted tests";
             const std::string name = kernel.name;
             if (name == "scalar") {
                 EXPECT_EQ(total(costs), total(singleCosts)) << "same order, same work";

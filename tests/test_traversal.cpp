@@ -39,7 +39,7 @@ void expectMatchesBruteForce(const TriangleMesh& mesh, size_t rayCount, uint32_t
     std::vector<uint8_t> occluded(rays.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
         referenceKernel<N>(Isa::Sse42).intersect(accel.view(), rays.data() + r.begin(), hits.data() + r.begin(), r.size(), nullptr);
-        referenceKernel<N>(Isa::Sse42).occluded(accel.view(), rays.data() + r.begin(), occluded.data() + r.begin(), r.size());
+        referenceKernel<N>(Isa::Sse42).occluded(accel.view(), rays.data() + r.begin(), occluded.data() + r.begin(), r.size(), nullptr);
     });
     std::vector<Hit> expected(rays.size());
     tbb::parallel_for(size_t(0), rays.size(), [&](size_t i) { expected[i] = testing::bruteForceHit(mesh, rays[i]); });
@@ -89,7 +89,7 @@ TEST(Traversal, InvalidRaysMissAndAreNotOccluded) {
     std::vector<Hit> hits(rays.size());
     std::vector<uint8_t> occluded(rays.size(), 1);
     referenceKernel<8>(Isa::Sse42).intersect(accel.view(), rays.data(), hits.data(), rays.size(), nullptr);
-    referenceKernel<8>(Isa::Sse42).occluded(accel.view(), rays.data(), occluded.data(), rays.size());
+    referenceKernel<8>(Isa::Sse42).occluded(accel.view(), rays.data(), occluded.data(), rays.size(), nullptr);
     for (size_t i = 0; i < rays.size(); ++i) {
         EXPECT_FALSE(hits[i].valid()) << "ray " << i;
         EXPECT_EQ(occluded[i], 0) << "ray " << i;
@@ -104,12 +104,12 @@ TEST(Traversal, TfarLimitsHitsAndOcclusion) {
     uint8_t occ = 0;
     referenceKernel<4>(Isa::Sse42).intersect(accel.view(), &below, &hit, 1, nullptr);
     EXPECT_FALSE(hit.valid());
-    referenceKernel<4>(Isa::Sse42).occluded(accel.view(), &below, &occ, 1);
+    referenceKernel<4>(Isa::Sse42).occluded(accel.view(), &below, &occ, 1, nullptr);
     EXPECT_EQ(occ, 0);
     referenceKernel<4>(Isa::Sse42).intersect(accel.view(), &reach, &hit, 1, nullptr);
     EXPECT_TRUE(hit.valid());
     EXPECT_EQ(hit.t, 1.0f);
-    referenceKernel<4>(Isa::Sse42).occluded(accel.view(), &reach, &occ, 1);
+    referenceKernel<4>(Isa::Sse42).occluded(accel.view(), &reach, &occ, 1, nullptr);
     EXPECT_EQ(occ, 1);
 }
 

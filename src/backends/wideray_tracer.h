@@ -39,7 +39,7 @@ public:
             incoherent_.occludedCached(view_, rays.data(), occluded.data(), rays.size(), cache);
             return;
         }
-        kernel(coherence).occluded(view_, rays.data(), occluded.data(), rays.size());
+        kernel(coherence).occluded(view_, rays.data(), occluded.data(), rays.size(), nullptr);
     }
 
     const SceneGeometry& geometry() const override { return accel_.geometry(); }

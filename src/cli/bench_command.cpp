@@ -46,8 +46,8 @@ constexpr size_t kChunk = 4096;  // rays per task: sixteen 16x16 tiles
 /// One way of tracing a batch: closest hits (hits != null) or occlusion.
 using TraceFn = std::function<void(const Ray* rays, size_t count, Hit* hits, uint8_t* occluded, bool coherent)>;
 
-/// Closest hits of a batch with each ray's traversal work (our kernels only).
-using CountFn = std::function<void(const Ray* rays, size_t count, Hit* hits, TraversalCost* costs)>;
+/// A batch traced like TraceFn, with each ray's traversal work (our kernels only).
+using CountFn = std::function<void(const Ray* rays, size_t count, Hit* hits, uint8_t* occluded, TraversalCost* costs)>;
 
 struct Candidate {
     std::string backend, kernel, isa;
@@ -69,11 +69,13 @@ struct Measurement {
 };
 
 /// The kernel's work on the rays, traced once more with its counters on (not timed).
-WorkPerRay countWork(const CountFn& count, const std::vector<Ray>& rays) {
-    std::vector<Hit> hits(rays.size());
+WorkPerRay countWork(const CountFn& count, const std::vector<Ray>& rays, bool anyHit) {
+    std::vector<Hit> hits(anyHit ? 0 : rays.size());
+    std::vector<uint8_t> occluded(anyHit ? rays.size() : 0);
     std::vector<TraversalCost> costs(rays.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), kChunk), [&](const tbb::blocked_range<size_t>& r) {
-        count(rays.data() + r.begin(), r.size(), hits.data() + r.begin(), costs.data() + r.begin());
+        count(rays.data() + r.begin(), r.size(), anyHit ? nullptr : hits.data() + r.begin(),
+              anyHit ? occluded.data() + r.begin() : nullptr, costs.data() + r.begin());
     });
     WorkPerRay w;
     for (const TraversalCost& c : costs) {
@@ -118,9 +120,12 @@ std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, const std::stri
             if (!k.available()) continue;
             auto trace = [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
                 if (h) k.intersect(view, r, h, n, nullptr);
-                else k.occluded(view, r, o, n);
+                else k.occluded(view, r, o, n, nullptr);
             };
-            auto count = [view, k](const Ray* r, size_t n, Hit* h, TraversalCost* costs) { k.intersect(view, r, h, n, costs); };
+            auto count = [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, TraversalCost* costs) {
+                if (h) k.intersect(view, r, h, n, costs);
+                else k.occluded(view, r, o, n, costs);
+            };
             out.push_back({"wideray", k.name, isaName(isa), quality, k.embreeCounterpart, trace, count});
             // The shadow cache: one per task, so that each chunk of rays starts cold (as a renderer tile would).
             if (k.occludedCached)
@@ -219,8 +224,7 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
             if (!anyHit && c.kernel == "single+cache") continue;  // the cache is for shadow rays only
             fmt::print(stderr, "\r{} {} {} {}...            ", name, kindName, c.kernel, c.isa);
             Measurement m = measure(c, set, anyHit, coherent, args.runs);
-            // Occlusion entry points report no costs: counters are for closest-hit rays.
-            if (args.counters && c.count && !anyHit) m.work = countWork(c.count, set);
+            if (args.counters && c.count) m.work = countWork(c.count, set, anyHit);
             if (c.backend == "embree" && m.mraysPerSecond > embreeBest[c.kernel].first)
                 embreeBest[c.kernel] = {m.mraysPerSecond, c.quality};
             measured.push_back({&c, m});
@@ -280,8 +284,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         ->check(CLI::IsMember({"fast", "high", "both"}))
         ->capture_default_str();
     cmd->add_flag("--counters", args->counters,
-                  "Also print our kernels' work per ray on closest-hit rays: inner nodes visited, leaves entered, "
-                  "primitives tested (JSON: nodes_per_ray, leaves_per_ray, primitives_per_ray)");
+                  "Also print our kernels' work per ray: inner nodes visited, leaves entered, primitives tested "
+                  "(JSON: nodes_per_ray, leaves_per_ray, primitives_per_ray)");
     cmd->add_flag("--all-isas", args->allIsas, "Measure our kernels for every ISA this CPU has, not only the best");
     cmd->add_option("--json", args->json, "Write the results as JSON (fields: machine, results, builds)");
     cmd->callback([args, &exitCode] {

@@ -24,12 +24,13 @@ void singleIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size
 }
 
 template <int N, int NodeW, int TriW>
-void singleOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count) {
+void singleOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count, TraversalCost* costs) {
     for (size_t i = 0; i < count; ++i) {
         TraversalCost cost;
         Hit hit;
         hit.t = rays[i].tfar;
         occluded[i] = traceSingle<N, NodeW, TriW, true>(scene, rays[i], hit, cost) ? 1 : 0;
+        if (costs) costs[i] = cost;
     }
 }
 
@@ -80,9 +81,10 @@ void packetIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size
 }
 
 template <int N, int K>
-void packetOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count) {
+void packetOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count, TraversalCost* costs) {
     for (size_t i = 0; i < count; i += K)
-        tracePacket<N, K, true>(scene, rays + i, int(count - i < K ? count - i : K), nullptr, occluded + i);
+        tracePacket<N, K, true>(scene, rays + i, int(count - i < K ? count - i : K), nullptr, occluded + i,
+                                costs ? costs + i : nullptr);
 }
 
 /// Packets of 256 rays (a 16x16 tile in Morton order), sub-packets as wide as the ISA allows.
@@ -95,11 +97,12 @@ void largePacketIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits,
 }
 
 template <int N>
-void largePacketOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count) {
+void largePacketOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count,
+                         TraversalCost* costs) {
     constexpr int K = kMaxWidth, P = 256 / K;
     for (size_t i = 0; i < count; i += K * P)
         traceLargePacket<N, K, P, true>(scene, rays + i, int(count - i < K * P ? count - i : K * P), nullptr,
-                                        occluded + i);
+                                        occluded + i, costs ? costs + i : nullptr);
 }
 
 /// Streams of up to kStreamSize rays, SIMD across the widest vector of the ISA.
@@ -114,11 +117,11 @@ void streamIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size
 }
 
 template <int N, StreamOrder Order>
-void streamOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count) {
+void streamOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count, TraversalCost* costs) {
     StreamWorkspace& ws = StreamWorkspace::forThisThread();
     for (size_t i = 0; i < count; i += kStreamSize)
         traceStream<N, kMaxWidth, true, Order>(scene, rays + i, count - i < kStreamSize ? count - i : kStreamSize,
-                                               nullptr, occluded + i, ws);
+                                               nullptr, occluded + i, ws, costs ? costs + i : nullptr);
 }
 
 /// A K-wide packet kernel where this ISA's vectors are that wide, null entry points elsewhere.

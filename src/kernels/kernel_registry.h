@@ -26,7 +26,7 @@ struct alignas(64) ShadowCache {  // a cache line each: threads update their own
 template <int N>
 struct Kernel {
     using IntersectFn = void (*)(const SceneView<N>&, const Ray*, Hit*, size_t, TraversalCost*);
-    using OccludedFn = void (*)(const SceneView<N>&, const Ray*, uint8_t*, size_t);
+    using OccludedFn = void (*)(const SceneView<N>&, const Ray*, uint8_t*, size_t, TraversalCost*);
     /// Occlusion with a shadow cache; only the single-ray kernel has it.
     using OccludedCachedFn = void (*)(const SceneView<N>&, const Ray*, uint8_t*, size_t, ShadowCache&);
 

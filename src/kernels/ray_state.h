@@ -55,11 +55,9 @@ inline void classifyAxes(PacketRay<K>& p, uint32_t lanes) {
     p.woop.kx.store(kx); p.woop.ky.store(ky); p.woop.kz.store(kz);
     int first = __builtin_ctz(lanes);
     p.kx = kx[first]; p.ky = ky[first]; p.kz = kz[first];
-    p.uniformAxes = true;
-    for (uint32_t l = lanes; l; l &= l - 1) {
-        int i = __builtin_ctz(l);
-        p.uniformAxes = p.uniformAxes && kx[i] == p.kx && ky[i] == p.ky && kz[i] == p.kz;
-    }
+    const uint32_t same = movemask(p.woop.kx == vint<K>(p.kx)) & movemask(p.woop.ky == vint<K>(p.ky)) &
+                          movemask(p.woop.kz == vint<K>(p.kz));
+    p.uniformAxes = (same & lanes) == lanes;
     if (p.uniformAxes) {
         const vfloat<K>* o[3] = {&p.ox, &p.oy, &p.oz};
         p.okx = *o[p.kx]; p.oky = *o[p.ky]; p.okz = *o[p.kz];

@@ -236,10 +236,9 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
 template <int N, int K, int P, bool AnyHit, class Leaves = SceneLeafIntersector>
 inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
                              uint8_t* occludedOut, TraversalCost* costsOut = nullptr) {
-    if constexpr (!AnyHit)  // occlusion queries report no costs
-        if (costsOut)
-            return traceLargePacketCounted<N, K, P, AnyHit, true, Leaves>(scene, rays, count, hitsOut, occludedOut,
-                                                                          costsOut);
+    if (costsOut)
+        return traceLargePacketCounted<N, K, P, AnyHit, true, Leaves>(scene, rays, count, hitsOut, occludedOut,
+                                                                      costsOut);
     traceLargePacketCounted<N, K, P, AnyHit, false, Leaves>(scene, rays, count, hitsOut, occludedOut, nullptr);
 }
 

@@ -174,8 +174,7 @@ inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int c
 template <int N, int K, bool AnyHit, class Leaves = SceneLeafIntersector>
 inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut,
                         TraversalCost* costsOut = nullptr) {
-    if constexpr (!AnyHit)  // occlusion queries report no costs
-        if (costsOut) return tracePacketCounted<N, K, AnyHit, true, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
+    if (costsOut) return tracePacketCounted<N, K, AnyHit, true, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
     tracePacketCounted<N, K, AnyHit, false, Leaves>(scene, rays, count, hitsOut, occludedOut, nullptr);
 }
 
