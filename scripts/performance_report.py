@@ -201,6 +201,16 @@ def summary_section(bench, table, chart_name):
     return "\n\n".join(parts)
 
 
+def our_labels(table, scene):
+    """Our kernel labels measured on a scene, in the registry's order."""
+    labels = []
+    for kind in RAY_KINDS:
+        for label in table.get((scene, kind, "wideray"), {}):
+            if label not in labels:
+                labels.append(label)
+    return sorted(labels, key=lambda l: (OUR_KERNELS.index(l.split(" ")[0]) if l.split(" ")[0] in OUR_KERNELS else 99, l))
+
+
 def kernel_section(bench, table):
     parts = ["## Kernel against kernel\n\nMrays/s. Each of our kernels next to its Embree counterpart: single "
              "ray and the scalar reference against `rtcIntersect1`, packetK against `rtcIntersectK` "
@@ -210,12 +220,7 @@ def kernel_section(bench, table):
         header = ["ours", "Embree"]
         for kind in RAY_KINDS:
             header += ["%s ours" % kind, "%s Embree" % kind, "%s ratio" % kind]
-        labels = []
-        for kind in RAY_KINDS:
-            for label in table.get((scene, kind, "wideray"), {}):
-                if label not in labels:
-                    labels.append(label)
-        labels.sort(key=lambda l: (OUR_KERNELS.index(l.split(" ")[0]) if l.split(" ")[0] in OUR_KERNELS else 99, l))
+        labels = our_labels(table, scene)
         rows = []
         for label in labels:
             kernel = label.split(" ")[0]
@@ -234,7 +239,6 @@ def kernel_section(bench, table):
 
 def work_section(bench, table):
     """Our kernels' work per ray (bench --counters), next to their speed."""
-    kinds = RAY_KINDS
     if not any("nodes_per_ray" in r for r in bench["results"]):
         return None
     parts = ["## Work per ray\n\nOur kernels' traversal work (`wideray bench --counters`), "
@@ -244,18 +248,13 @@ def work_section(bench, table):
              "every unfinished ray of the 256. Shadow rays stop at the first occluder; `single+cache` is not counted."]
     for scene in scenes_in_order(bench["results"]):
         header = ["ours"]
-        for kind in kinds:
+        for kind in RAY_KINDS:
             header += ["%s Mrays/s" % kind, "%s nodes" % kind, "%s leaves" % kind, "%s triangles" % kind]
-        labels = []
-        for kind in kinds:
-            for label in table.get((scene, kind, "wideray"), {}):
-                if label not in labels:
-                    labels.append(label)
-        labels.sort(key=lambda l: (OUR_KERNELS.index(l.split(" ")[0]) if l.split(" ")[0] in OUR_KERNELS else 99, l))
+        labels = our_labels(table, scene)
         rows = []
         for label in labels:
             row = [label]
-            for kind in kinds:
+            for kind in RAY_KINDS:
                 r = table.get((scene, kind, "wideray"), {}).get(label)
                 if r and "nodes_per_ray" in r:
                     row += [mrays(r["mrays_per_s"]), "%.1f" % r["nodes_per_ray"], "%.2f" % r["leaves_per_ray"],
