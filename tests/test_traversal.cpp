@@ -37,9 +37,11 @@ void expectMatchesBruteForce(const TriangleMesh& mesh, size_t rayCount, uint32_t
     std::vector<Ray> rays = testing::randomRays(mesh, rayCount, seed);
     std::vector<Hit> hits(rays.size());
     std::vector<uint8_t> occluded(rays.size());
+    // The baseline reference: the brute force below shares its arithmetic (no FMA).
+    const Kernel<N> reference = referenceKernel<N>(Isa::Sse42);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-        referenceKernel<N>(Isa::Sse42).intersect(accel.view(), rays.data() + r.begin(), hits.data() + r.begin(), r.size(), nullptr);
-        referenceKernel<N>(Isa::Sse42).occluded(accel.view(), rays.data() + r.begin(), occluded.data() + r.begin(), r.size(), nullptr);
+        reference.intersect(accel.view(), rays.data() + r.begin(), hits.data() + r.begin(), r.size(), nullptr);
+        reference.occluded(accel.view(), rays.data() + r.begin(), occluded.data() + r.begin(), r.size(), nullptr);
     });
     std::vector<Hit> expected(rays.size());
     tbb::parallel_for(size_t(0), rays.size(), [&](size_t i) { expected[i] = testing::bruteForceHit(mesh, rays[i]); });

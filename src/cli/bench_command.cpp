@@ -43,19 +43,27 @@ struct BenchArgs {
 
 constexpr size_t kChunk = 4096;  // rays per task: sixteen 16x16 tiles
 
-/// One way of tracing a batch: closest hits (hits != null) or occlusion.
-using TraceFn = std::function<void(const Ray* rays, size_t count, Hit* hits, uint8_t* occluded, bool coherent)>;
-
-/// A batch traced like TraceFn, with each ray's traversal work (our kernels only).
-using CountFn = std::function<void(const Ray* rays, size_t count, Hit* hits, uint8_t* occluded, TraversalCost* costs)>;
+/// One way of tracing a batch: closest hits (hits != null) or occlusion, and each ray's traversal
+/// work where `costs` is given (only asked of candidates that count it).
+using TraceFn = std::function<void(const Ray* rays, size_t count, Hit* hits, uint8_t* occluded, bool coherent,
+                                   TraversalCost* costs)>;
 
 struct Candidate {
     std::string backend, kernel, isa;
     std::string quality;      ///< the build it traces: ours "fast" or "high"; Embree's "medium" or "high"
     std::string counterpart;  ///< the Embree kernel ours is compared with
     TraceFn trace;
-    CountFn count;            ///< null where the work is not counted
+    bool countsWork = false;  ///< whether `trace` fills costs
 };
+
+/// The whole ray set through a candidate, in tasks of kChunk rays.
+void traceAll(const Candidate& c, const std::vector<Ray>& rays, bool anyHit, bool coherent, std::vector<Hit>& hits,
+              std::vector<uint8_t>& occluded, TraversalCost* costs) {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), kChunk), [&](const tbb::blocked_range<size_t>& r) {
+        c.trace(rays.data() + r.begin(), r.size(), anyHit ? nullptr : hits.data() + r.begin(),
+                anyHit ? occluded.data() + r.begin() : nullptr, coherent, costs ? costs + r.begin() : nullptr);
+    });
+}
 
 /// Work per ray, averaged over a ray set.
 struct WorkPerRay {
@@ -69,14 +77,11 @@ struct Measurement {
 };
 
 /// The kernel's work on the rays, traced once more with its counters on (not timed).
-WorkPerRay countWork(const CountFn& count, const std::vector<Ray>& rays, bool anyHit) {
+WorkPerRay countWork(const Candidate& c, const std::vector<Ray>& rays, bool anyHit, bool coherent) {
     std::vector<Hit> hits(anyHit ? 0 : rays.size());
     std::vector<uint8_t> occluded(anyHit ? rays.size() : 0);
     std::vector<TraversalCost> costs(rays.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), kChunk), [&](const tbb::blocked_range<size_t>& r) {
-        count(rays.data() + r.begin(), r.size(), anyHit ? nullptr : hits.data() + r.begin(),
-              anyHit ? occluded.data() + r.begin() : nullptr, costs.data() + r.begin());
-    });
+    traceAll(c, rays, anyHit, coherent, hits, occluded, costs.data());
     WorkPerRay w;
     for (const TraversalCost& c : costs) {
         w.nodes += c.nodes;
@@ -92,10 +97,7 @@ Measurement measure(const Candidate& c, const std::vector<Ray>& rays, bool anyHi
     std::vector<uint8_t> occluded(anyHit ? rays.size() : 0);
     auto once = [&] {
         auto start = Clock::now();
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), kChunk), [&](const tbb::blocked_range<size_t>& r) {
-            c.trace(rays.data() + r.begin(), r.size(), anyHit ? nullptr : hits.data() + r.begin(),
-                    anyHit ? occluded.data() + r.begin() : nullptr, coherent);
-        });
+        traceAll(c, rays, anyHit, coherent, hits, occluded, nullptr);
         return std::chrono::duration<double>(Clock::now() - start).count();
     };
     once();  // warm-up: caches, page faults, thread start
@@ -114,28 +116,23 @@ template <int N>
 std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, const std::string& quality, bool allIsas) {
     std::vector<Candidate> out;
     SceneView<N> view = accel.view();
-    for (Isa isa : {Isa::Sse42, Isa::Avx2, Isa::Avx512}) {
-        if (!cpuSupports(isa) || (!allIsas && isa != bestIsa())) continue;
+    for (Isa isa : supportedIsas()) {
+        if (!allIsas && isa != bestIsa()) continue;
         for (const Kernel<N>& k : kernelTable<N>(isa).rows) {
             if (!k.available()) continue;
-            auto trace = [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
-                if (h) k.intersect(view, r, h, n, nullptr);
-                else k.occluded(view, r, o, n, nullptr);
-            };
-            auto count = [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, TraversalCost* costs) {
+            auto trace = [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool, TraversalCost* costs) {
                 if (h) k.intersect(view, r, h, n, costs);
                 else k.occluded(view, r, o, n, costs);
             };
-            out.push_back({"wideray", k.name, isaName(isa), quality, k.embreeCounterpart, trace, count});
+            out.push_back({"wideray", k.name, isaName(isa), quality, k.embreeCounterpart, trace, true});
             // The shadow cache: one per task, so that each chunk of rays starts cold (as a renderer tile would).
             if (k.occludedCached)
                 out.push_back({"wideray", std::string(k.name) + "+cache", isaName(isa), quality, k.embreeCounterpart,
-                               [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool) {
+                               [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool, TraversalCost*) {
                                    if (h) return;
                                    ShadowCache cache;
                                    k.occludedCached(view, r, o, n, cache);
-                               },
-                               nullptr});
+                               }});
         }
     }
     return out;
@@ -149,12 +146,11 @@ std::vector<Candidate> embreeCandidates(const Structure& embree, const std::stri
         if (!embreeSupports(kernel)) continue;
         std::shared_ptr<const Tracer> tracer = embree.tracer({embreeKernelName(kernel)});
         out.push_back({"embree", embreeKernelName(kernel), "embree", quality, "",
-                       [tracer](const Ray* r, size_t n, Hit* h, uint8_t* o, bool coherent) {
+                       [tracer](const Ray* r, size_t n, Hit* h, uint8_t* o, bool coherent, TraversalCost*) {
                            Coherence c = coherent ? Coherence::Coherent : Coherence::Incoherent;
                            if (h) tracer->intersect({r, n}, {h, n}, c);
                            else tracer->occluded({r, n}, {o, n}, c);
-                       },
-                       nullptr});
+                       }});
     }
     return out;
 }
@@ -224,7 +220,7 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
             if (!anyHit && c.kernel == "single+cache") continue;  // the cache is for shadow rays only
             fmt::print(stderr, "\r{} {} {} {}...            ", name, kindName, c.kernel, c.isa);
             Measurement m = measure(c, set, anyHit, coherent, args.runs);
-            if (args.counters && c.count) m.work = countWork(c.count, set, anyHit);
+            if (args.counters && c.countsWork) m.work = countWork(c, set, anyHit, coherent);
             if (c.backend == "embree" && m.mraysPerSecond > embreeBest[c.kernel].first)
                 embreeBest[c.kernel] = {m.mraysPerSecond, c.quality};
             measured.push_back({&c, m});

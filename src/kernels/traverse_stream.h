@@ -113,6 +113,8 @@ template <int K>
 inline void gatherPacket(const StreamWorkspace& ws, const ListChunk<K>& c, PacketRay<K>& p, PacketHit<K>& h) {
     using F = vfloat<K>;
     p.ox = c.fetch(ws.ox); p.oy = c.fetch(ws.oy); p.oz = c.fetch(ws.oz);
+    // The slab constants are remade from the origin and reciprocal (12 operations) rather than kept
+    // per ray: that would be six more arrays to gather per chunk and node instead of three.
     p.slab = makeSlabRay(p.ox, p.oy, p.oz, c.fetch(ws.rdx), c.fetch(ws.rdy), c.fetch(ws.rdz));
     p.negX = p.slab.rdx < F(0.0f); p.negY = p.slab.rdy < F(0.0f); p.negZ = p.slab.rdz < F(0.0f);
     p.tnear = c.fetch(ws.tnear);
