@@ -46,7 +46,7 @@ inline size_t loadStream(const Ray* rays, size_t count, StreamWorkspace& ws) {
     for (size_t i = 0; i < count; ++i) {
         if (!ws.valid[i]) continue;
         const Ray& r = rays[i];
-        uint32_t octant = (r.dx < 0.0f ? 1u : 0u) | (r.dy < 0.0f ? 2u : 0u) | (r.dz < 0.0f ? 4u : 0u);
+        uint32_t octant = (r.dx < 0.0f ? 12u : 0u) | (r.dy < 0.0f ? 2u : 0u) | (r.dz < 0.0f ? 4u : 0u);
         uint32_t morton = spreadBits10(uint32_t((r.ox - lo[0]) * scale[0])) |
                           (spreadBits10(uint32_t((r.oy - lo[1]) * scale[1])) << 1) |
                           (spreadBits10(uint32_t((r.oz - lo[2]) * scale[2])) << 2);
@@ -360,6 +360,49 @@ inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWor
     return pushed;
 }
 
+/// Lists shorter than this fill too few lanes of a vector to gain on single rays: their rays finish
+/// the subtree one at a time, with the single-ray kernel's SIMD box and triangle tests.
+constexpr uint32_t kSingleRayListSize = 8;
+
+/// The closest hit so far of a stream slot, as the single-ray kernel keeps it.
+inline Hit slotHit(const StreamWorkspace& ws, int32_t s) {
+    if (ws.prim[s] != kNoPrim) return {ws.tfar[s], ws.u[s], ws.v[s], uint32_t(ws.prim[s]), 0};
+    if (ws.userGeomId[s] != kInvalidId) return {ws.tfar[s], ws.u[s], ws.v[s], ws.userPrimId[s], ws.userGeomId[s]};
+    return {ws.tfar[s], 0, 0, kInvalidId, kInvalidId};
+}
+
+template <int N, bool AnyHit, class Leaves>
+inline void traceListSingly(const SceneView<N>& scene, const Ray* rays, const StreamEntry& e, StreamWorkspace& ws) {
+    for (uint32_t at = e.begin; at < e.end; ++at) {
+        const int32_t s = ws.arena[at];
+        if (!(ws.tnear[s] <= ws.tfar[s])) continue;  // occluded already
+        const Ray& ray = rays[ws.rayOf[s]];
+        Hit hit = slotHit(ws, s);
+        TraversalCost cost;
+        const bool occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(
+            scene, e.ref, ray, makeSingleRayState(ray), hit, cost);
+        if (ws.countCost) {
+            ws.costNodes[s] += cost.nodes;
+            ws.costLeaves[s] += cost.leaves;
+            ws.costPrimitives[s] += cost.primitives;
+        }
+        if (occluded) {
+            ws.tfar[s] = -__builtin_huge_valf();
+        } else if (hit.valid()) {
+            ws.tfar[s] = hit.t;
+            ws.u[s] = hit.u;
+            ws.v[s] = hit.v;
+            if (hit.geomId == 0) {
+                ws.prim[s] = int32_t(hit.primId);
+            } else {
+                ws.prim[s] = kNoPrim;
+                ws.userGeomId[s] = hit.geomId;
+                ws.userPrimId[s] = hit.primId;
+            }
+        }
+    }
+}
+
 template <int N, int K, bool AnyHit, StreamOrder Order, class Leaves>
 inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t n, StreamWorkspace& ws) {
     const Leaves leaves{scene.leaves};
@@ -370,7 +413,8 @@ inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t 
     stack[sp++] = {scene.root, 0.0f, 0, uint32_t(n), uint32_t(n), kNoRecheck};
     while (sp > 0) {
         const StreamEntry e = stack[--sp];
-        if (e.ref.isLeaf()) traceStreamLeaf<N, K, AnyHit>(scene, leaves, rays, e, ws);
+        if (e.end - e.begin < kSingleRayListSize) traceListSingly<N, AnyHit, Leaves>(scene, rays, e, ws);
+        else if (e.ref.isLeaf()) traceStreamLeaf<N, K, AnyHit>(scene, leaves, rays, e, ws);
         else if constexpr (Order == StreamOrder::ByList) sp += splitByList<N, K>(scene, e, ws, stack + sp);
         else sp += splitByRay<N, K>(scene, e, ws, stack + sp);
     }

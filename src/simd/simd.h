@@ -65,7 +65,8 @@ template <> struct Types<8> { using Float = vfloat8; using Int = vint8; using Bo
 template <> struct Types<16> { using Float = vfloat16; using Int = vint16; using Bool = vbool16; };
 #endif
 
-/// Writes the lanes of `values` selected by `mask` contiguously to out; returns how many.
+/// Writes the lanes of `values` selected by `mask` contiguously to out (which has room for all lanes);
+/// returns how many.
 template <class I, class B>
 inline int compressStore(int32_t* out, const I& values, const B& mask) {
     alignas(64) int32_t v[sizeof(I) / 4];

@@ -87,9 +87,11 @@ inline vfloat16 gather(const float* base, vint16 index) {
 inline vint16 gather(const int32_t* base, vint16 index) {
     return _mm512_mask_i32gather_epi32(_mm512_setzero_si512(), 0xFFFF, index.m, base, 4);
 }
-/// Writes the lanes of `values` selected by `mask` contiguously to out; returns how many.
+/// Writes the lanes of `values` selected by `mask` contiguously to out, and whatever fills the rest of
+/// 16 lanes after them (out has room for 16); returns how many are selected. Compressing in a register
+/// and storing whole is much faster than the masked compress to memory on Zen 4.
 inline int compressStore(int32_t* out, vint16 values, vbool16 mask) {
-    _mm512_mask_compressstoreu_epi32(out, mask.m, values.m);
+    _mm512_storeu_si512(out, _mm512_maskz_compress_epi32(mask.m, values.m));
     return __builtin_popcount(mask.m);
 }
 inline float reduceMin(vfloat16 a) { return _mm512_reduce_min_ps(a.m); }
