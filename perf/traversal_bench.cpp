@@ -1,6 +1,6 @@
 // Closest-hit traversal of an 8-wide BVH, one kernel at a time on one thread: the scalar reference
-// and every kernel of the best ISA this CPU has (the rows of kernels/kernel_registry.h), on the primary and
-// diffuse rays of `wideray bench` (render/bench_rays.h) for the Stanford bunny, or a generated torus
+// and every kernel of the best ISA this CPU has (the rows of kernels/kernel_registry.h), on the primary,
+// diffuse and bounce rays of `wideray bench` (render/bench_rays.h) for the Stanford bunny, or a generated torus
 // when the shared meshes are absent. WIDERAY_TRAVERSAL_INPUT names another scene file or mesh (an
 // interior scene, say: `WIDERAY_TRAVERSAL_INPUT=scenes/sponza_interior.json wideray_perf`).
 #include <benchmark/benchmark.h>
@@ -71,7 +71,7 @@ void traverse(benchmark::State& state, Kernel<8> kernel, RayKind kind) {
     const Isa isa = bestIsa();
     for (const Kernel<8>& k : kernelTable<8>(isa).rows)
         if (k.available()) kernels.push_back({k, std::string(k.name) + "_" + isaName(isa)});
-    for (RayKind kind : {RayKind::Primary, RayKind::Diffuse})
+    for (RayKind kind : {RayKind::Primary, RayKind::Diffuse, RayKind::Bounce})
         for (const auto& [kernel, name] : kernels)
             benchmark::RegisterBenchmark(("traversal/" + inputName() + "/" + rayKindName(kind) + "/" + name).c_str(),
                                          traverse, kernel, kind)

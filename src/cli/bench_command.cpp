@@ -34,7 +34,11 @@ struct BenchArgs {
     int threads = 0;
     int runs = 5;
     std::string json;
-    std::vector<std::string> kinds{"primary", "shadow", "diffuse"};
+    std::vector<std::string> kinds = [] {
+        std::vector<std::string> all;
+        for (const RayKindInfo& k : rayKinds()) all.push_back(k.name);
+        return all;
+    }();
     bool allIsas = false;
     std::string backend = "both";
     std::string quality = "fast";  ///< our builds: fast, high or both
@@ -210,10 +214,10 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
                "isa", "build", "Mrays/s", "hits", args.counters ? "nodes/ray leaves/ray prims/ray " : "",
                "vs embree's faster build");
     for (const std::string& kindName : args.kinds) {
-        RayKind kind = kindName == "primary" ? RayKind::Primary : kindName == "shadow" ? RayKind::Shadow : RayKind::Diffuse;
-        const std::vector<Ray>& set = rays.of(kind);
+        const RayKindInfo& kind = *findRayKind(kindName);
+        const std::vector<Ray>& set = rays.of(kind.kind);
         if (set.empty()) continue;
-        bool anyHit = kind == RayKind::Shadow, coherent = kind != RayKind::Diffuse;
+        const bool anyHit = kind.anyHit, coherent = kind.coherent;
         std::map<std::string, std::pair<double, std::string>> embreeBest;  // kernel -> (Mrays/s, quality)
         std::vector<std::pair<const Candidate*, Measurement>> measured;
         for (const Candidate& c : candidates) {
@@ -258,7 +262,7 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
 void addBenchCommand(CLI::App& app, int& exitCode) {
     auto args = std::make_shared<BenchArgs>();
     CLI::App* cmd = app.add_subcommand(
-        "bench", "Trace the same primary, shadow and diffuse rays with each of our kernels and Embree's, in one "
+        "bench", "Trace the same primary, shadow, diffuse and bounce rays with each of our kernels and Embree's, in one "
                  "process; print Mrays/s (median of several runs) and the ratio ours / Embree");
     cmd->add_option("inputs", args->inputs, "Scene files (camera and first point light used) or meshes (framed by "
                                             "the rule in docs/performance.md)")
@@ -268,8 +272,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--runs", args->runs, "Timed runs per measurement (after one warm-up); the median is reported")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
-    cmd->add_option("--rays", args->kinds, "Ray kinds: primary, shadow, diffuse")
-        ->check(CLI::IsMember({"primary", "shadow", "diffuse"}))
+    cmd->add_option("--rays", args->kinds, "Ray kinds: primary, shadow, diffuse, bounce (docs/performance.md)")
+        ->check(CLI::IsMember(args->kinds))
         ->delimiter(',');
     cmd->add_option("--backend", args->backend, "Whose kernels to measure: wideray, embree or both")
         ->check(CLI::IsMember({"wideray", "embree", "both"}))

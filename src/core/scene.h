@@ -83,9 +83,14 @@ struct Fog {
     glm::vec3 color{1.0f};  ///< the fraction of the extinguished light that is scattered (the albedo)
 };
 
+/// How light is gathered: Whitted-style recursion (direct light at diffuse surfaces, specular and
+/// glossy paths followed) or unidirectional path tracing (src/shading/path_vertex.h).
+enum class Integrator { Whitted, Path };
+
 struct RenderSettings {
-    int maxDepth = 8;             ///< bounces of reflection and refraction
-    float minThroughput = 0.01f;  ///< paths carrying less are ended
+    Integrator integrator = Integrator::Whitted;
+    int maxDepth = 8;             ///< bounces of reflection and refraction (path: scattering events)
+    float minThroughput = 0.01f;  ///< Whitted: paths carrying less are ended
     bool polarized = false;       ///< track s and p polarization through Fresnel events
 };
 

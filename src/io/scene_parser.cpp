@@ -49,6 +49,19 @@ public:
     }
 
 private:
+    /// The value a table of the vocabulary gives the string at `n`.
+    template <class T>
+    T named(const Node& n, const std::vector<std::pair<std::string, T>>& table, const std::string& what) const {
+        const std::string word = string(n);
+        std::vector<std::string> names;
+        for (const auto& [name, value] : table) {
+            if (name == word) return value;
+            names.push_back(name);
+        }
+        const std::string hint = suggestion(word, names);
+        fail(n.path, "unknown " + what + " \"" + word + "\"" + (hint.empty() ? " (expected " + joined(names) + ")" : hint));
+    }
+
     // ---- camera, image, fog, render settings
 
     void readCamera(const Node& n) {
@@ -84,8 +97,9 @@ private:
     }
 
     void readRender(const Node& n) {
-        checkKeys(n, {"max_depth", "min_throughput", "polarized"});
+        checkKeys(n, {"integrator", "max_depth", "min_throughput", "polarized"});
         RenderSettings& render = scene_.render;
+        if (n.has("integrator")) render.integrator = named(n["integrator"], kIntegrators, "integrator");
         if (n.has("max_depth")) render.maxDepth = integer(n["max_depth"], 0, 1024);
         if (n.has("min_throughput")) render.minThroughput = unitInterval(n["min_throughput"]);
         if (n.has("polarized")) render.polarized = boolean(n["polarized"]);
@@ -193,16 +207,8 @@ private:
     /// two "values". Both are fractions in [0, 1].
     Texture texture(const Node& n, bool scalar) {
         require(n, "type");
-        const std::string type = string(n["type"]);
-        const auto known = std::find_if(kTextureTypes.begin(), kTextureTypes.end(), [&](const auto& t) { return t.first == type; });
-        if (known == kTextureTypes.end()) {
-            std::vector<std::string> names;
-            for (const auto& t : kTextureTypes) names.push_back(t.first);
-            const std::string hint = suggestion(type, names);
-            fail(n["type"].path, "unknown texture type \"" + type + "\"" + (hint.empty() ? " (expected " + joined(names) + ")" : hint));
-        }
         Texture texture;
-        texture.type = known->second;
+        texture.type = named(n["type"], kTextureTypes, "texture type");
         if (texture.type == TextureType::Image) {
             checkKeys(n, {"type", "file"});
             require(n, "file");

@@ -5,15 +5,26 @@
 #include <utility>
 #include <vector>
 
+#include "core/scene.h"
 #include "core/texture.h"
 
 namespace wideray {
 
 inline const std::vector<std::string> kShapes = {"cube", "icosphere", "torus", "quad"};
+inline const std::vector<std::pair<std::string, Integrator>> kIntegrators = {{"whitted", Integrator::Whitted},
+                                                                             {"path", Integrator::Path}};
 inline const std::vector<std::string> kMaterialTypes = {"diffuse", "plastic", "mirror", "conductor", "dielectric"};
 inline const std::vector<std::pair<std::string, TextureType>> kTextureTypes = {
     {"checker", TextureType::Checker}, {"noise", TextureType::Noise},   {"fbm", TextureType::Fbm},
     {"turbulence", TextureType::Turbulence}, {"marble", TextureType::Marble}, {"image", TextureType::Image}};
+
+/// The name a vocabulary table gives `value` (every value of the enums is in its table).
+template <class T>
+const std::string& nameOf(const std::vector<std::pair<std::string, T>>& table, T value) {
+    for (const auto& [name, v] : table)
+        if (v == value) return name;
+    return table.front().first;
+}
 
 inline bool hasOctaves(TextureType type) {
     return type == TextureType::Fbm || type == TextureType::Turbulence || type == TextureType::Marble;

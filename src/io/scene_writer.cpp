@@ -12,8 +12,7 @@ namespace {
 Json array(const glm::vec3& v) { return Json::array({v.x, v.y, v.z}); }
 
 Json textureJson(const Texture& texture, bool scalar) {
-    const auto named = std::find_if(kTextureTypes.begin(), kTextureTypes.end(), [&](const auto& t) { return t.second == texture.type; });
-    Json j = {{"type", named->first}};
+    Json j = {{"type", nameOf(kTextureTypes, texture.type)}};
     if (texture.type == TextureType::Image) {
         j["file"] = texture.file.string();
         return j;
@@ -104,7 +103,7 @@ std::string writeScene(const Scene& scene) {
     root["image"] = {{"width", scene.image.width}, {"height", scene.image.height}, {"spp", scene.image.samplesPerPixel}};
     root["background"] = array(scene.background);
     root["fog"] = {{"density", scene.fog.density}, {"color", array(scene.fog.color)}};
-    root["render"] = {{"max_depth", scene.render.maxDepth}, {"min_throughput", scene.render.minThroughput},
+    root["render"] = {{"integrator", nameOf(kIntegrators, scene.render.integrator)}, {"max_depth", scene.render.maxDepth}, {"min_throughput", scene.render.minThroughput},
                       {"polarized", scene.render.polarized}};
     Json& materials = root["materials"] = Json::object();
     for (const Material& m : scene.materials) materials[m.name] = materialJson(m);

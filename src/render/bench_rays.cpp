@@ -2,12 +2,16 @@
 
 #include <cmath>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "core/bounds.h"
-#include "render/camera.h"
 #include "core/random.h"
+#include "render/camera.h"
+#include "render/film.h"
 #include "render/tile_order.h"
+#include "render/tile_renderer.h"
+#include "shading/material_model.h"
 
 namespace wideray {
 namespace {
@@ -18,22 +22,55 @@ Ray rayFrom(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar) {
     return {o.x, o.y, o.z, d.x, d.y, d.z, tnear, tfar};
 }
 
-/// Cosine-weighted direction about n (Malley's method through a concentric-free polar map).
-glm::vec3 cosineDirection(const glm::vec3& n, float u1, float u2) {
-    float r = std::sqrt(u1), phi = 2.0f * float(M_PI) * u2;
-    glm::vec3 t = std::fabs(n.x) > 0.5f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
-    glm::vec3 b1 = glm::normalize(glm::cross(n, t)), b2 = glm::cross(n, b1);
-    return glm::normalize(r * std::cos(phi) * b1 + r * std::sin(phi) * b2 + std::sqrt(std::max(0.0f, 1.0f - u1)) * n);
+constexpr int kFirstBounce = 2, kLastBounce = 4;
+
+/// The rays of bounces kFirstBounce..kLastBounce of the path tracer at one sample per pixel, tile
+/// after tile in the renderer's order.
+std::vector<Ray> bounceRays(const Scene& scene, const Tracer& tracer, int width, int height) {
+    Scene pathTraced = scene;
+    pathTraced.render.integrator = Integrator::Path;
+    RenderOptions options;
+    options.width = width;
+    options.height = height;
+    options.samplesPerPixel = 1;
+    options.tileSize = renderTileSize(pathTraced, 1);
+    const TileOrder order(width, height, options.tileSize);
+    Film film(width, height, Aov::Color, 1);
+    const TileRenderer renderer(pathTraced, tracer, options, order, film);
+    tbb::enumerable_thread_specific<TileBuffers> buffers;
+    std::vector<std::vector<Ray>> perTile(order.tiles().size());
+    tbb::parallel_for(size_t(0), perTile.size(), [&](size_t t) {
+        TileBuffers& buf = buffers.local();
+        buf.firstRecorded = kFirstBounce;
+        buf.lastRecorded = kLastBounce;
+        buf.recorded.clear();
+        renderer.render(order.tiles()[t], buf);
+        perTile[t] = buf.recorded;
+    });
+    std::vector<Ray> rays;
+    for (const std::vector<Ray>& tile : perTile) rays.insert(rays.end(), tile.begin(), tile.end());
+    return rays;
 }
 
 } // namespace
 
+const std::vector<RayKindInfo>& rayKinds() {
+    static const std::vector<RayKindInfo> kinds = {{RayKind::Primary, "primary", false, true},
+                                                   {RayKind::Shadow, "shadow", true, true},
+                                                   {RayKind::Diffuse, "diffuse", false, false},
+                                                   {RayKind::Bounce, "bounce", false, false}};
+    return kinds;
+}
+
+const RayKindInfo* findRayKind(std::string_view name) {
+    for (const RayKindInfo& k : rayKinds())
+        if (name == k.name) return &k;
+    return nullptr;
+}
+
 const char* rayKindName(RayKind kind) {
-    switch (kind) {
-    case RayKind::Primary: return "primary";
-    case RayKind::Shadow: return "shadow";
-    case RayKind::Diffuse: return "diffuse";
-    }
+    for (const RayKindInfo& k : rayKinds())
+        if (k.kind == kind) return k.name;
     return "?";
 }
 
@@ -84,6 +121,7 @@ BenchRays makeBenchRays(const Scene& scene, const Tracer& reference, int width, 
         float u1 = rng.next(), u2 = rng.next();
         out.diffuse.push_back(rayFrom(sp.position, cosineDirection(n, u1, u2), tnear, INFINITY));
     }
+    out.bounce = bounceRays(scene, reference, width, height);
     return out;
 }
 

@@ -16,6 +16,7 @@ Image render(const Scene& scene, const Tracer& tracer, const RenderOptions& opti
     resolved.width = options.width > 0 ? options.width : scene.image.width;
     resolved.height = options.height > 0 ? options.height : scene.image.height;
     resolved.samplesPerPixel = options.samplesPerPixel > 0 ? options.samplesPerPixel : scene.image.samplesPerPixel;
+    if (resolved.tileSize == 0) resolved.tileSize = renderTileSize(scene, resolved.samplesPerPixel);
 
     const TileOrder order(resolved.width, resolved.height, resolved.tileSize);
     Film film(resolved.width, resolved.height, resolved.aov, resolved.samplesPerPixel);

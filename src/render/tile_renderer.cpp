@@ -5,6 +5,7 @@
 
 #include "core/random.h"
 #include "shading/beer.h"
+#include "shading/path_vertex.h"
 
 namespace wideray {
 namespace {
@@ -38,12 +39,20 @@ glm::vec3 mediumTransmittance(const Material& material, float distance) {
 
 } // namespace
 
+int renderTileSize(const Scene& scene, int samplesPerPixel) {
+    if (scene.render.integrator != Integrator::Path) return 16;
+    int size = 16;
+    while (size < 64 && size * size * samplesPerPixel < 4096) size *= 2;
+    return size;
+}
+
 TileRenderer::TileRenderer(const Scene& scene, const Tracer& tracer, const RenderOptions& options,
                            const TileOrder& order, Film& film)
     : scene_(scene), tracer_(tracer), geometry_(tracer.geometry()), options_(options), order_(order), film_(film),
       camera_(scene.camera, options.width, options.height), objects_(geometry_.bounds()),
       epsilon_(1e-4f * (objects_.empty() ? 1.0f : glm::length(objects_.extent()))),
-      fog_(scene.fog, boundsWithLights(objects_, scene)), shading_{scene, fog_, epsilon_} {}
+      fog_(scene.fog, boundsWithLights(objects_, scene)), shading_{scene, fog_, epsilon_},
+      pathTracing_(scene.render.integrator == Integrator::Path) {}
 
 // Primary paths of the tile in Morton order, each pixel's samples stratified over the pixel and, in a
 // rotated order, over the lens.
@@ -81,31 +90,59 @@ void TileRenderer::writeAov(const TileBuffers& buf) const {
     }
 }
 
+glm::vec3 TileRenderer::segmentTransmittance(const PathState& path, float t) const {
+    if (!path.media.empty()) return mediumTransmittance(scene_.materials[path.media.innermost()], t);
+    return glm::vec3(fog_.transmittance(path.ray, t));
+}
+
+void TileRenderer::addLightCrossings(const PathState& path, float segment, TileBuffers& buf) const {
+    buf.crossings.clear();
+    lightCrossings(scene_.lights, path.ray, segment, buf.crossings);
+    for (const LightCrossing& c : buf.crossings) {
+        const float weight = path.scatterPdf > 0.0f ? balanceHeuristic(path.scatterPdf, float(c.count) * c.pdf) : 1.0f;
+        film_.addSample(path.pixelX, path.pixelY, path.throughput() * segmentTransmittance(path, c.t) * c.radiance * weight);
+    }
+}
+
+// A counting sort, stable: hits of one material stay in ray order.
+void TileRenderer::sortByMaterial(TileBuffers& buf) const {
+    std::vector<uint32_t>& start = buf.materialCounts;
+    start.assign(scene_.materials.size() + 1, 0);
+    for (const ShadingItem& item : buf.shading) ++start[item.surface.material + 1];
+    for (size_t m = 1; m < start.size(); ++m) start[m] += start[m - 1];
+    buf.shadingSorted.resize(buf.shading.size());
+    for (const ShadingItem& item : buf.shading) buf.shadingSorted[start[item.surface.material]++] = item;
+    std::swap(buf.shading, buf.shadingSorted);
+}
+
 // One bounce of every path: attenuation along the segment just traced (Beer inside a dielectric, the
 // fog outside, whose in-scattered light becomes shadow samples), then the background or the surface.
 void TileRenderer::shadeBounce(TileBuffers& buf) const {
-    ScatterOutput out{buf.shadows, buf.nextPaths, buf.lightScratch};
+    buf.shading.clear();
     for (size_t i = 0; i < buf.paths.size(); ++i) {
         PathState& path = buf.paths[i];
         const Hit& hit = buf.hits[i];
         const float segment = hit.valid() ? hit.t : INFINITY;
         SampleRng rng(path.pixelX, path.pixelY, path.key, kBouncePurpose + uint32_t(path.depth));
-        if (!path.media.empty()) {
-            const glm::vec3 inside = mediumTransmittance(scene_.materials[path.media.innermost()], segment);
-            path.throughputS *= inside;
-            path.throughputP *= inside;
-        } else if (fog_.present()) {
+        if (pathTracing_) addLightCrossings(path, segment, buf);
+        if (path.media.empty() && fog_.present())
             fog_.addInscattering(scene_.lights, path.ray, segment, path.throughput(), epsilon_, path.pixelX,
                                  path.pixelY, rng, buf.lightScratch, buf.shadows);
-            const float outside = fog_.transmittance(path.ray, segment);
-            path.throughputS *= outside;
-            path.throughputP *= outside;
-        }
+        const glm::vec3 transmittance = segmentTransmittance(path, segment);
+        path.throughputS *= transmittance;
+        path.throughputP *= transmittance;
         if (!hit.valid()) {
             film_.addSample(path.pixelX, path.pixelY, path.throughput() * scene_.background);
             continue;
         }
-        scatterAtSurface(shading_, path, geometry_.surface(path.ray, hit), rng, out);
+        buf.shading.push_back({uint32_t(i), geometry_.surface(path.ray, hit), rng});
+    }
+    if (options_.shadingOrder == ShadingOrder::Material) sortByMaterial(buf);
+    ScatterOutput out{buf.shadows, buf.nextPaths, buf.lightScratch};
+    for (const ShadingItem& item : buf.shading) {
+        SampleRng rng = item.rng;
+        if (pathTracing_) scatterPathVertex(shading_, buf.paths[item.path], item.surface, rng, out);
+        else scatterAtSurface(shading_, buf.paths[item.path], item.surface, rng, out);
     }
 }
 
@@ -139,6 +176,8 @@ void TileRenderer::render(const TileRect& tile, TileBuffers& buf) const {
         buf.rays.resize(n);
         for (size_t i = 0; i < n; ++i) buf.rays[i] = buf.paths[i].ray;
         buf.hits.assign(n, Hit{});
+        if (bounce >= buf.firstRecorded && bounce <= buf.lastRecorded)
+            buf.recorded.insert(buf.recorded.end(), buf.rays.begin(), buf.rays.end());
         const bool primary = bounce == 0;
         const bool cost = primary && options_.aov == Aov::Cost;
         if (cost) buf.costs.assign(n, TraversalCost{});

@@ -1,8 +1,10 @@
 #pragma once
 // One tile of a render, wavefront style: the tile's primary rays (Morton order) are traced as one
-// coherent batch, every later bounce's reflected and refracted rays as one incoherent batch, and each
-// bounce's shadow rays (surfaces and fog) as another. Shading is in src/shading/surface_scattering.h
-// and fog_medium.h; the results go to a Film.
+// coherent batch, every later bounce's rays as one incoherent batch, and each bounce's shadow rays
+// (surfaces and fog) as another. A bounce first follows every path along the segment it traced
+// (attenuation, fog, the background, and for the path tracer the area lights it crossed), then shades
+// the surfaces reached, in the options' shading order. Shading is in src/shading/ (surface_scattering.h
+// for the Whitted integrator, path_vertex.h for the path tracer, fog_medium.h); results go to a Film.
 #include <vector>
 
 #include "backends/tracer.h"
@@ -16,6 +18,13 @@
 
 namespace wideray {
 
+/// A hit waiting to be shaded.
+struct ShadingItem {
+    uint32_t path;  ///< in TileBuffers::paths
+    SurfacePoint surface;
+    SampleRng rng{0, 0, 0};  ///< the path's random numbers for this bounce, as far as the segment used them
+};
+
 /// The work space of one tile, reused by the tiles a thread renders.
 struct TileBuffers {
     std::vector<PathState> paths, nextPaths;
@@ -28,7 +37,19 @@ struct TileBuffers {
     std::vector<uint32_t> shadowOrder;   ///< the shadow batch sorted for tracing
     std::vector<uint8_t> shadowBlocked;  ///< occlusion per shadow sample, in the order they were made
     std::vector<LightSample> lightScratch;
+    std::vector<LightCrossing> crossings;
+    std::vector<ShadingItem> shading, shadingSorted;  ///< the bounce's hits to shade
+    std::vector<uint32_t> materialCounts;
+
+    /// Where set, the rays of bounces firstRecorded..lastRecorded (0: camera rays) are appended to
+    /// `recorded`, as they are traced (bench's bounce rays).
+    int firstRecorded = -1, lastRecorded = -1;
+    std::vector<Ray> recorded;
 };
+
+/// The tile size `render` uses: 16 for the Whitted integrator; for the path tracer, large enough
+/// that a tile's paths (pixels x samples) make a stream of at least 4096 rays, up to 64.
+int renderTileSize(const Scene& scene, int samplesPerPixel);
 
 class TileRenderer {
 public:
@@ -43,6 +64,11 @@ private:
     void startPaths(const TileRect& tile, std::vector<PathState>& paths) const;
     void writeAov(const TileBuffers& buf) const;
     void shadeBounce(TileBuffers& buf) const;
+    /// The transmittance of the medium `path` is in (a dielectric's, or the fog) over [0, t] of its ray.
+    glm::vec3 segmentTransmittance(const PathState& path, float t) const;
+    /// Path tracing: the light of the area lights that `path` crosses before `segment`.
+    void addLightCrossings(const PathState& path, float segment, TileBuffers& buf) const;
+    void sortByMaterial(TileBuffers& buf) const;
     void traceShadows(TileBuffers& buf, int depth) const;
 
     const Scene& scene_;
@@ -56,6 +82,7 @@ private:
     float epsilon_;     ///< how far secondary rays start from their surface
     FogMedium fog_;
     ShadingContext shading_;
+    bool pathTracing_;
 };
 
 } // namespace wideray

@@ -7,7 +7,7 @@ namespace wideray {
 namespace {
 
 void addSample(const glm::vec3& position, const glm::vec3& toLight, float distance, const glm::vec3& irradiance,
-               float epsilon, std::vector<LightSample>& out) {
+               float epsilon, std::vector<LightSample>& out, float pdf = 0.0f, int count = 1) {
     LightSample s;
     s.shadowRay.ox = position.x; s.shadowRay.oy = position.y; s.shadowRay.oz = position.z;
     s.shadowRay.dx = toLight.x; s.shadowRay.dy = toLight.y; s.shadowRay.dz = toLight.z;
@@ -16,8 +16,19 @@ void addSample(const glm::vec3& position, const glm::vec3& toLight, float distan
     s.direction = toLight;
     s.distance = distance;
     s.irradiance = irradiance;
+    s.pdf = pdf;
+    s.count = count;
     out.push_back(s);
 }
+
+float lightArea(const Light& light) {
+    return light.type == LightType::Quad ? glm::length(glm::cross(light.edgeU, light.edgeV))
+                                         : 4.0f * float(M_PI) * light.radius * light.radius;
+}
+
+/// The density over solid angle of a point sampled uniformly over an area, seen at `distance` under
+/// `cosLight`.
+float solidAnglePdf(float area, float distance, float cosLight) { return distance * distance / (cosLight * area); }
 
 glm::vec3 uniformSphere(float u1, float u2) {
     float z = 1.0f - 2.0f * u1;
@@ -48,16 +59,13 @@ void sampleLights(const std::vector<Light>& lights, const glm::vec3& position, f
             for (int i = 0; i < n; ++i) {
                 const glm::vec2 u = glm::min(stratifiedPoint(i, n, rng), glm::vec2(1.0f));
                 glm::vec3 p, lightNormal;
-                float area;
+                const float area = lightArea(light);
                 if (light.type == LightType::Quad) {
                     p = light.position + u.x * light.edgeU + u.y * light.edgeV;
-                    glm::vec3 c = glm::cross(light.edgeU, light.edgeV);
-                    area = glm::length(c);
-                    lightNormal = c / area;
+                    lightNormal = glm::cross(light.edgeU, light.edgeV) / area;
                 } else {
                     lightNormal = uniformSphere(u.x, u.y);
                     p = light.position + light.radius * lightNormal;
-                    area = 4.0f * float(M_PI) * light.radius * light.radius;
                 }
                 glm::vec3 d = p - position;
                 float dist = glm::length(d);
@@ -66,11 +74,47 @@ void sampleLights(const std::vector<Light>& lights, const glm::vec3& position, f
                 // Quads emit on the side edge_u x edge_v points to; spheres outward.
                 float cosLight = std::max(0.0f, -glm::dot(lightNormal, l));
                 if (cosLight <= 0.0f) continue;
-                addSample(position, l, dist, power * (cosLight * area / (dist * dist * float(n))), epsilon, out);
+                addSample(position, l, dist, power * (cosLight * area / (dist * dist * float(n))), epsilon, out,
+                          solidAnglePdf(area, dist, cosLight), n);
             }
             break;
         }
         }
+    }
+}
+
+void lightCrossings(const std::vector<Light>& lights, const Ray& ray, float tmax, std::vector<LightCrossing>& out) {
+    const glm::vec3 o(ray.ox, ray.oy, ray.oz), d(ray.dx, ray.dy, ray.dz);
+    for (const Light& light : lights) {
+        if (light.type != LightType::Quad && light.type != LightType::Sphere) continue;
+        const int count = std::max(1, light.samples);
+        const float area = lightArea(light);
+        float t;
+        glm::vec3 normal;
+        if (light.type == LightType::Quad) {
+            normal = glm::cross(light.edgeU, light.edgeV) / area;
+            const float facing = glm::dot(d, normal);
+            if (!(facing < 0.0f)) continue;  // parallel, or from behind: quads emit on one side
+            t = glm::dot(light.position - o, normal) / facing;
+            if (!(t > ray.tnear && t < tmax)) continue;
+            const glm::vec3 p = o + t * d - light.position;
+            // p = s edgeU + r edgeV, solved in the plane (the quad may be a parallelogram).
+            const float s = glm::dot(glm::cross(p, light.edgeV), normal) / area;
+            const float r = glm::dot(glm::cross(light.edgeU, p), normal) / area;
+            if (s < 0.0f || s > 1.0f || r < 0.0f || r > 1.0f) continue;
+        } else {
+            // The near side of the sphere, seen from outside.
+            const glm::vec3 oc = o - light.position;
+            const float b = glm::dot(oc, d), c = glm::dot(oc, oc) - light.radius * light.radius;
+            const float disc = b * b - c;
+            if (c <= 0.0f || !(disc > 0.0f)) continue;
+            t = -b - std::sqrt(disc);
+            if (!(t > ray.tnear && t < tmax)) continue;
+            normal = (oc + t * d) / light.radius;
+        }
+        const float cosLight = -glm::dot(normal, d);
+        if (!(cosLight > 0.0f)) continue;
+        out.push_back({t, light.color * light.intensity, solidAnglePdf(area, t, cosLight), count});
     }
 }
 

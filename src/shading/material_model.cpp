@@ -32,6 +32,24 @@ void orthonormalBasis(const glm::vec3& n, glm::vec3& b1, glm::vec3& b2) {
     b2 = glm::vec3(b, sign + n.y * n.y * a, -n.y);
 }
 
+/// The exponent of the glossy lobe for alpha = roughness^2 > 0.
+float glossyExponent(float alpha) { return std::max(2.0f / (alpha * alpha) - 2.0f, 0.0f); }
+
+/// A direction about the unit `axis` with density (e + 1) / (2 pi) cos^e(theta).
+glm::vec3 cosinePowerDirection(const glm::vec3& axis, float exponent, float u1, float u2) {
+    const float cosTheta = std::pow(u1, 1.0f / (exponent + 1.0f));
+    const float sinTheta = std::sqrt(std::max(1.0f - cosTheta * cosTheta, 0.0f));
+    const float phi = 2.0f * float(M_PI) * u2;
+    glm::vec3 b1, b2;
+    orthonormalBasis(axis, b1, b2);
+    return glm::normalize(sinTheta * (std::cos(phi) * b1 + std::sin(phi) * b2) + cosTheta * axis);
+}
+
+float cosinePowerPdf(float exponent, float cosTheta) {
+    if (!(cosTheta > 0.0f)) return 0.0f;
+    return (exponent + 1.0f) / (2.0f * float(M_PI)) * std::pow(cosTheta, exponent);
+}
+
 } // namespace
 
 std::optional<ComplexIor> conductorPreset(const std::string& name) {
@@ -75,13 +93,28 @@ float blinnPhong(const glm::vec3& normal, const glm::vec3& toLight, const glm::v
 glm::vec3 glossyDirection(const glm::vec3& ideal, float roughness, float u1, float u2) {
     const float alpha = roughness * roughness;
     if (!(alpha > 0.0f)) return ideal;
-    const float exponent = std::max(2.0f / (alpha * alpha) - 2.0f, 0.0f);
-    const float cosTheta = std::pow(u1, 1.0f / (exponent + 1.0f));
-    const float sinTheta = std::sqrt(std::max(1.0f - cosTheta * cosTheta, 0.0f));
-    const float phi = 2.0f * float(M_PI) * u2;
-    glm::vec3 b1, b2;
-    orthonormalBasis(ideal, b1, b2);
-    return glm::normalize(sinTheta * (std::cos(phi) * b1 + std::sin(phi) * b2) + cosTheta * ideal);
+    return cosinePowerDirection(ideal, glossyExponent(alpha), u1, u2);
+}
+
+float glossyPdf(const glm::vec3& ideal, float roughness, const glm::vec3& direction) {
+    return cosinePowerPdf(glossyExponent(roughness * roughness), glm::dot(ideal, direction));
+}
+
+glm::vec3 cosineDirection(const glm::vec3& n, float u1, float u2) { return cosinePowerDirection(n, 1.0f, u1, u2); }
+
+glm::vec3 blinnPhongDirection(const glm::vec3& normal, const glm::vec3& toViewer, float shininess, float u1, float u2) {
+    const glm::vec3 h = cosinePowerDirection(normal, shininess, u1, u2);
+    return 2.0f * glm::dot(toViewer, h) * h - toViewer;
+}
+
+float blinnPhongPdf(const glm::vec3& normal, const glm::vec3& toViewer, float shininess, const glm::vec3& toLight) {
+    const glm::vec3 sum = toLight + toViewer;
+    const float length = glm::length(sum);
+    if (!(length > 0.0f)) return 0.0f;
+    const glm::vec3 h = sum / length;
+    const float cosVH = glm::dot(toViewer, h);
+    if (!(cosVH > 0.0f)) return 0.0f;
+    return cosinePowerPdf(shininess, glm::dot(normal, h)) / (4.0f * cosVH);
 }
 
 } // namespace wideray

@@ -42,4 +42,17 @@ float blinnPhong(const glm::vec3& normal, const glm::vec3& toLight, const glm::v
 /// may point below the surface; the caller treats such a sample as absorbed.
 glm::vec3 glossyDirection(const glm::vec3& ideal, float roughness, float u1, float u2);
 
+/// The density over solid angle with which glossyDirection(ideal, roughness > 0, ...) picks `direction`.
+float glossyPdf(const glm::vec3& ideal, float roughness, const glm::vec3& direction);
+
+/// A cosine-weighted direction about the unit normal `n` (density cos(theta) / pi); u1, u2 in [0, 1).
+glm::vec3 cosineDirection(const glm::vec3& n, float u1, float u2);
+
+/// A direction sampled for the plastic highlight: a half vector h drawn with density proportional to
+/// (n.h)^shininess, reflected about it. It may point below the surface.
+glm::vec3 blinnPhongDirection(const glm::vec3& normal, const glm::vec3& toViewer, float shininess, float u1, float u2);
+
+/// The density over solid angle with which blinnPhongDirection picks `toLight`.
+float blinnPhongPdf(const glm::vec3& normal, const glm::vec3& toViewer, float shininess, const glm::vec3& toLight);
+
 } // namespace wideray

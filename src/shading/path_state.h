@@ -42,6 +42,11 @@ private:
     int size_ = 0;
 };
 
+/// Throughput factors for s- and p-polarized light, per channel.
+struct PolarizedFactor {
+    glm::vec3 s, p;
+};
+
 /// One path of one pixel sample, about to trace `ray`. The throughput is kept separately for light
 /// polarized perpendicular (s) and parallel (p) to the planes of incidence; unpolarized light is
 /// their average. Without polarization tracking both always hold the same value.
@@ -52,9 +57,24 @@ struct PathState {
     uint32_t key = 0;    ///< the sample index for primary paths; distinct for every path split from it
     int depth = 0;       ///< reflections and refractions so far
     bool glossySplit = false;  ///< has already branched into several glossy samples
+    /// Path tracing: the density over solid angle with which `ray`'s direction was sampled, where the
+    /// vertex it leaves also sampled the lights; 0 where it did not (the camera, specular events).
+    float scatterPdf = 0.0f;
     MediumStack media;
 
     glm::vec3 throughput() const { return 0.5f * (throughputS + throughputP); }
+
+    /// Multiplies the throughput by an event's s and p factors; without polarization tracking, by their average.
+    void scaleThroughput(const PolarizedFactor& factor, bool polarized) {
+        if (polarized) {
+            throughputS *= factor.s;
+            throughputP *= factor.p;
+        } else {
+            const glm::vec3 average = 0.5f * (factor.s + factor.p);
+            throughputS *= average;
+            throughputP *= average;
+        }
+    }
 };
 
 /// A shadow ray and the color it adds to its pixel if nothing occludes it.

@@ -12,11 +12,6 @@ namespace {
 
 constexpr float kInvPi = 0.318309886f;
 
-/// Throughput factors for s- and p-polarized light, per channel.
-struct PolarizedFactor {
-    glm::vec3 s, p;
-};
-
 /// A specular or glossy lobe: its ideal direction, which side of the surface it leaves on (+1 along
 /// the normal, -1 through the surface), its weight, and the media its paths travel in.
 struct Lobe {
@@ -26,17 +21,6 @@ struct Lobe {
     MediumStack media;
     uint32_t firstBranch;
 };
-
-void scaleThroughput(PathState& path, const PolarizedFactor& factor, bool polarized) {
-    if (polarized) {
-        path.throughputS *= factor.s;
-        path.throughputP *= factor.p;
-    } else {
-        const glm::vec3 average = 0.5f * (factor.s + factor.p);
-        path.throughputS *= average;
-        path.throughputP *= average;
-    }
-}
 
 /// Diffuse and plastic: a shadow sample per light sample, weighted by the BRDF.
 void addDirectLight(const ShadingContext& context, const PathState& path, const SurfacePoint& sp,
@@ -79,46 +63,66 @@ void followLobe(const ShadingContext& context, const PathState& path, const glm:
         next.key = pcgHash(path.key + 0x9e3779b9u * (lobe.firstBranch + uint32_t(i) + 1));
         next.glossySplit = path.glossySplit || count > 1;
         next.media = lobe.media;
-        scaleThroughput(next, weight, context.scene.render.polarized);
+        next.scaleThroughput(weight, context.scene.render.polarized);
         const glm::vec3 carried = next.throughput();
         if (std::max({carried.x, carried.y, carried.z}) >= context.scene.render.minThroughput)
             out.continuations.push_back(next);
     }
 }
 
+/// Fresnel reflection and Snell refraction, both followed.
+void scatterDielectric(const ShadingContext& context, const PathState& path, const SurfacePoint& sp,
+                       const glm::vec3& direction, const glm::vec3& normal, SampleRng& rng, ScatterOutput& out) {
+    const Material& material = context.scene.materials[sp.material];
+    const DielectricCrossing crossing = crossDielectric(context.scene, path.media, sp, direction, normal);
+    const FresnelReflectance<float>& r = crossing.reflectance;
+    const float roughness = materialRoughness(material, sp.position, sp.uv);
+    const uint32_t branches = uint32_t(std::max(1, material.samples));
+    followLobe(context, path, sp.position, normal, material, roughness,
+               {crossing.reflected, 1.0f, {glm::vec3(r.s), glm::vec3(r.p)}, path.media, 0}, rng, out);
+    if (crossing.refracted)
+        followLobe(context, path, sp.position, normal, material, roughness,
+                   {*crossing.refracted, -1.0f, {glm::vec3(1.0f - r.s), glm::vec3(1.0f - r.p)}, crossing.beyond, branches},
+                   rng, out);
+}
+
 float indexOfRefraction(const Scene& scene, const MediumStack& media) {
     return media.empty() ? 1.0f : scene.materials[media.innermost()].ior;
 }
 
-/// Fresnel reflection and Snell refraction; the side of the geometric normal the path arrives from
-/// tells entering from leaving.
-void scatterDielectric(const ShadingContext& context, const PathState& path, const SurfacePoint& sp,
-                       const glm::vec3& direction, const glm::vec3& normal, SampleRng& rng, ScatterOutput& out) {
-    const Material& material = context.scene.materials[sp.material];
+} // namespace
+
+DielectricCrossing crossDielectric(const Scene& scene, const MediumStack& media, const SurfacePoint& sp,
+                                   const glm::vec3& direction, const glm::vec3& normal) {
+    const Material& material = scene.materials[sp.material];
     const bool entering = glm::dot(direction, sp.geometricNormal) < 0.0f;
-    MediumStack beyond = path.media;
+    DielectricCrossing c{.beyond = media};
     float etaI, etaT;
     if (entering) {
-        etaI = indexOfRefraction(context.scene, path.media);
+        etaI = indexOfRefraction(scene, media);
         etaT = material.ior;
-        beyond.push(sp.material);
+        c.beyond.push(sp.material);
     } else {
         etaI = material.ior;
-        beyond.remove(sp.material);
-        etaT = indexOfRefraction(context.scene, beyond);
+        c.beyond.remove(sp.material);
+        etaT = indexOfRefraction(scene, c.beyond);
     }
     const float eta = etaT / etaI;
-    const FresnelReflectance<float> r = fresnelDielectric(-glm::dot(direction, normal), eta);
-    const float roughness = materialRoughness(material, sp.position, sp.uv);
-    const uint32_t branches = uint32_t(std::max(1, material.samples));
-    followLobe(context, path, sp.position, normal, material, roughness,
-               {reflectDirection(direction, normal), 1.0f, {glm::vec3(r.s), glm::vec3(r.p)}, path.media, 0}, rng, out);
-    if (const std::optional<glm::vec3> refracted = refractDirection(direction, normal, eta))
-        followLobe(context, path, sp.position, normal, material, roughness,
-                   {*refracted, -1.0f, {glm::vec3(1.0f - r.s), glm::vec3(1.0f - r.p)}, beyond, branches}, rng, out);
+    c.reflectance = fresnelDielectric(-glm::dot(direction, normal), eta);
+    c.reflected = reflectDirection(direction, normal);
+    c.refracted = refractDirection(direction, normal, eta);
+    return c;
 }
 
-} // namespace
+PolarizedFactor conductorFresnel(const Material& material, float cosine) {
+    PolarizedFactor fresnel;
+    for (int c = 0; c < 3; ++c) {
+        const FresnelReflectance<float> r = fresnelConductor(cosine, material.eta[c], material.k[c]);
+        fresnel.s[c] = r.s;
+        fresnel.p[c] = r.p;
+    }
+    return fresnel;
+}
 
 void scatterAtSurface(const ShadingContext& context, const PathState& path, const SurfacePoint& sp, SampleRng& rng,
                       ScatterOutput& out) {
@@ -138,18 +142,10 @@ void scatterAtSurface(const ShadingContext& context, const PathState& path, cons
                    rng, out);
         break;
     }
-    case MaterialType::Conductor: {
-        const float cosine = -glm::dot(direction, normal);
-        PolarizedFactor fresnel;
-        for (int c = 0; c < 3; ++c) {
-            const FresnelReflectance<float> r = fresnelConductor(cosine, material.eta[c], material.k[c]);
-            fresnel.s[c] = r.s;
-            fresnel.p[c] = r.p;
-        }
+    case MaterialType::Conductor:
         followLobe(context, path, sp.position, normal, material, materialRoughness(material, sp.position, sp.uv),
-                   {mirrored, 1.0f, fresnel, path.media, 0}, rng, out);
+                   {mirrored, 1.0f, conductorFresnel(material, -glm::dot(direction, normal)), path.media, 0}, rng, out);
         break;
-    }
     case MaterialType::Dielectric: scatterDielectric(context, path, sp, direction, normal, rng, out); break;
     case MaterialType::Diffuse:
     case MaterialType::Plastic: break;

@@ -12,6 +12,7 @@
 // next, i.e. that the planes of incidence along a path coincide (exact for paths in one plane, such
 // as a beam between parallel plates, approximate otherwise); it ignores the rotation between
 // successive frames that a full Mueller-matrix treatment would carry.
+#include <optional>
 #include <vector>
 
 #include "core/geometry.h"
@@ -20,6 +21,7 @@
 #include "core/scene.h"
 #include "shading/direct_lighting.h"
 #include "shading/fog_medium.h"
+#include "shading/fresnel.h"
 
 namespace wideray {
 
@@ -36,6 +38,23 @@ struct ScatterOutput {
     std::vector<PathState>& continuations;
     std::vector<LightSample>& lightScratch;
 };
+
+/// What a path meets at the surface of a dielectric: entering and leaving are told by the side of the
+/// geometric normal it arrives from; indices are relative to the medium it is in.
+struct DielectricCrossing {
+    MediumStack beyond;  ///< the media of the refracted path
+    FresnelReflectance<float> reflectance;
+    glm::vec3 reflected;
+    std::optional<glm::vec3> refracted;  ///< none past the critical angle
+};
+
+/// The crossing for a path inside `media` arriving along `direction` at `sp`, with `normal` the
+/// shading normal turned against `direction`.
+DielectricCrossing crossDielectric(const Scene& scene, const MediumStack& media, const SurfacePoint& sp,
+                                   const glm::vec3& direction, const glm::vec3& normal);
+
+/// The s and p reflectances of a conductor at cos(theta) = `cosine`, per channel.
+PolarizedFactor conductorFresnel(const Material& material, float cosine);
 
 /// Shades the surface `sp` that `path` (its ray of unit direction) has reached, its throughput
 /// already including the segment's attenuation.
