@@ -27,7 +27,7 @@ StreamWorkspace::~StreamWorkspace() {
 void StreamWorkspace::reserveRays(size_t n) {
     if (n <= capacity) return;
     size_t stride = (n + 15) / 16 * 16;  // keeps every array 64-byte aligned
-    size_t bytes = stride * (4 * (kFloatArrays + kIntArrays + kIdArrays) + sizeof(uint64_t) + 1);
+    size_t bytes = stride * (4 * (kFloatArrays + kIntArrays + kIdArrays) + 2 * sizeof(uint64_t) + 1);
     char* block = static_cast<char*>(allocate(bytes));
     std::free(ox);
     float** floats[kFloatArrays] = {&ox, &oy, &oz, &rdx, &rdy, &rdz, &tnear, &tfar, &sx, &sy, &sz, &u, &v};
@@ -40,6 +40,8 @@ void StreamWorkspace::reserveRays(size_t n) {
         block += stride * 4;
     }
     keys = reinterpret_cast<uint64_t*>(block);
+    block += stride * 8;
+    sortScratch = reinterpret_cast<uint64_t*>(block);
     block += stride * 8;
     for (uint32_t** a : {&rayOf, &userGeomId, &userPrimId, &costNodes, &costLeaves, &costPrimitives}) {
         *a = reinterpret_cast<uint32_t*>(block);
@@ -74,6 +76,21 @@ StreamWorkspace& StreamWorkspace::forThisThread() {
     return workspace;
 }
 
-void sortStreamKeys(uint64_t* keys, size_t count) { std::sort(keys, keys + count); }
+// Least significant digit first, 11 bits a pass over the 33 bits above the index: three counting
+// passes, each stable, so the index order of the input survives among equal codes.
+void StreamWorkspace::sortKeys(size_t count) {
+    constexpr int kDigitBits = 11, kPasses = 3;
+    static_assert(kKeyIndexBits + kDigitBits * kPasses == 64);
+    uint64_t *from = keys, *to = sortScratch;
+    for (int pass = 0; pass < kPasses; ++pass) {
+        const int shift = kKeyIndexBits + pass * kDigitBits;
+        uint32_t start[(1 << kDigitBits) + 1] = {};
+        for (size_t i = 0; i < count; ++i) ++start[((from[i] >> shift) & ((1 << kDigitBits) - 1)) + 1];
+        for (int d = 1; d <= (1 << kDigitBits); ++d) start[d] += start[d - 1];
+        for (size_t i = 0; i < count; ++i) to[start[(from[i] >> shift) & ((1 << kDigitBits) - 1)]++] = from[i];
+        std::swap(from, to);
+    }
+    if (from != keys) std::memcpy(keys, from, count * sizeof(uint64_t));
+}
 
 } // namespace wideray

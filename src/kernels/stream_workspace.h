@@ -17,7 +17,10 @@ struct StreamWorkspace {
     uint32_t *userGeomId = nullptr, *userPrimId = nullptr;  ///< the ids of closest hits on user primitives
     uint32_t *costNodes = nullptr, *costLeaves = nullptr, *costPrimitives = nullptr;  ///< traversal work, when counted
     bool countCost = false;
-    uint64_t* keys = nullptr;   ///< sort keys: (octant, Morton code) << 32 | ray index
+    /// Sort keys: the direction octant in bits 61..63, a Morton code of the origin in bits 31..60,
+    /// the ray's index in bits 0..30 (kKeyIndexBits).
+    uint64_t* keys = nullptr;
+    uint64_t* sortScratch = nullptr;
     uint8_t* valid = nullptr;   ///< per ray of the caller's array: whether it is traced at all
     size_t capacity = 0;
     int32_t* arena = nullptr;   ///< the ray lists of the nodes waiting on the traversal stack
@@ -35,10 +38,12 @@ struct StreamWorkspace {
     void reserveArena(size_t n);
     /// Grows the stack to at least `bytes` (its contents are not kept) and returns it.
     void* reserveStack(size_t bytes);
+    /// Sorts keys[0, count) by octant and Morton code; rays with equal codes stay in index order.
+    void sortKeys(size_t count);
 
     static StreamWorkspace& forThisThread();
 };
 
-void sortStreamKeys(uint64_t* keys, size_t count);
+constexpr int kKeyIndexBits = 31;
 
 } // namespace wideray

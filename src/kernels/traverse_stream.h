@@ -25,9 +25,10 @@ inline uint32_t spreadBits10(uint32_t x) {
     return x;
 }
 
-/// Fills the workspace with the valid rays, sorted; returns how many there are.
+/// Fills the workspace with the valid rays (count < 2^kKeyIndexBits), sorted; returns how many there are.
 template <int K>
 inline size_t loadStream(const Ray* rays, size_t count, StreamWorkspace& ws) {
+    constexpr uint64_t kIndexMask = (uint64_t(1) << kKeyIndexBits) - 1;
     ws.reserveRays(count);
     float lo[3] = {__builtin_huge_valf(), __builtin_huge_valf(), __builtin_huge_valf()};
     float hi[3] = {-__builtin_huge_valf(), -__builtin_huge_valf(), -__builtin_huge_valf()};
@@ -50,15 +51,15 @@ inline size_t loadStream(const Ray* rays, size_t count, StreamWorkspace& ws) {
         uint32_t morton = spreadBits10(uint32_t((r.ox - lo[0]) * scale[0])) |
                           (spreadBits10(uint32_t((r.oy - lo[1]) * scale[1])) << 1) |
                           (spreadBits10(uint32_t((r.oz - lo[2]) * scale[2])) << 2);
-        ws.keys[n++] = (uint64_t(octant << 30 | morton) << 32) | i;
+        ws.keys[n++] = uint64_t(octant) << 61 | uint64_t(morton) << kKeyIndexBits | i;
     }
-    sortStreamKeys(ws.keys, n);
+    ws.sortKeys(n);
     // Set up K rays at a time with the packet code (same arithmetic as every other kernel).
     for (size_t s = 0; s < n; s += K) {
         const int count = int(n - s < size_t(K) ? n - s : size_t(K));
         using F = vfloat<K>;
         F fields[8];
-        loadRayFields<K>([&](int l) -> const Ray& { return rays[uint32_t(ws.keys[s + (l < count ? l : 0)])]; }, fields);
+        loadRayFields<K>([&](int l) -> const Ray& { return rays[uint32_t(ws.keys[s + (l < count ? l : 0)] & kIndexMask)]; }, fields);
         F Ox = fields[0], Oy = fields[1], Oz = fields[2], Dx = fields[3], Dy = fields[4], Dz = fields[5];
         auto woop = makeWatertightRay<F, vint<K>>(Ox, Oy, Oz, Dx, Dy, Dz);
         // The arrays have room for whole vectors (capacity is a multiple of 16).
@@ -69,7 +70,7 @@ inline size_t loadStream(const Ray* rays, size_t count, StreamWorkspace& ws) {
         F(0.0f).store(ws.u + s); F(0.0f).store(ws.v + s);
         vint<K>(kNoPrim).store(ws.prim + s);
         for (int l = 0; l < count; ++l) {
-            uint32_t i = uint32_t(ws.keys[s + l]);
+            uint32_t i = uint32_t(ws.keys[s + l] & kIndexMask);
             ws.rayOf[s + l] = i;
             ws.userGeomId[s + l] = ws.userPrimId[s + l] = kInvalidId;
             ws.tnear[s + l] = rays[i].tnear;
@@ -361,8 +362,9 @@ inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWor
 }
 
 /// Lists shorter than this fill too few lanes of a vector to gain on single rays: their rays finish
-/// the subtree one at a time, with the single-ray kernel's SIMD box and triangle tests.
-constexpr uint32_t kSingleRayListSize = 8;
+/// the subtree one at a time, with the single-ray kernel's SIMD box and triangle tests. A leaf's
+/// rays switch later, as their single-ray test needs no set-up (measured on bounce rays, Sponza).
+constexpr uint32_t kSingleRayListSize = 8, kSingleRayLeafListSize = 4;
 
 /// The closest hit so far of a stream slot, as the single-ray kernel keeps it.
 inline Hit slotHit(const StreamWorkspace& ws, int32_t s) {
@@ -372,15 +374,24 @@ inline Hit slotHit(const StreamWorkspace& ws, int32_t s) {
 }
 
 template <int N, bool AnyHit, class Leaves>
-inline void traceListSingly(const SceneView<N>& scene, const Ray* rays, const StreamEntry& e, StreamWorkspace& ws) {
+inline void traceListSingly(const SceneView<N>& scene, const Leaves& leaves, const Ray* rays, const StreamEntry& e,
+                            StreamWorkspace& ws) {
     for (uint32_t at = e.begin; at < e.end; ++at) {
         const int32_t s = ws.arena[at];
         if (!(ws.tnear[s] <= ws.tfar[s])) continue;  // occluded already
         const Ray& ray = rays[ws.rayOf[s]];
         Hit hit = slotHit(ws, s);
         TraversalCost cost;
-        const bool occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(
-            scene, e.ref, ray, makeSingleRayState(ray), hit, cost);
+        bool occluded;
+        if (e.ref.isLeaf()) {
+            // The triangle test's part of the ray state is in the stream already: no divisions.
+            SingleRayState state;
+            state.woop = {ws.ox[s], ws.oy[s], ws.oz[s], ws.kx[s], ws.ky[s], ws.kz[s], ws.sx[s], ws.sy[s], ws.sz[s]};
+            occluded = leaves.template single<kBlockSize, AnyHit>(e.ref, state, ray, hit, cost);
+        } else {
+            occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(scene, e.ref, ray,
+                                                                                        makeSingleRayState(ray), hit, cost);
+        }
         if (ws.countCost) {
             ws.costNodes[s] += cost.nodes;
             ws.costLeaves[s] += cost.leaves;
@@ -413,7 +424,8 @@ inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t 
     stack[sp++] = {scene.root, 0.0f, 0, uint32_t(n), uint32_t(n), kNoRecheck};
     while (sp > 0) {
         const StreamEntry e = stack[--sp];
-        if (e.end - e.begin < kSingleRayListSize) traceListSingly<N, AnyHit, Leaves>(scene, rays, e, ws);
+        if (e.end - e.begin < (e.ref.isLeaf() ? kSingleRayLeafListSize : kSingleRayListSize))
+            traceListSingly<N, AnyHit>(scene, leaves, rays, e, ws);
         else if (e.ref.isLeaf()) traceStreamLeaf<N, K, AnyHit>(scene, leaves, rays, e, ws);
         else if constexpr (Order == StreamOrder::ByList) sp += splitByList<N, K>(scene, e, ws, stack + sp);
         else sp += splitByRay<N, K>(scene, e, ws, stack + sp);
