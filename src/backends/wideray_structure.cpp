@@ -64,7 +64,11 @@ std::unique_ptr<Tracer> WideBvhStructure<N>::tracer(const KernelChoice& choice) 
         coherent = *table.find("packet256");
         coherent.occluded = widest->occluded;
         coherentName = std::string("packet256+") + widest->name;
-        incoherent = *table.find("single");
+        // Incoherent batches (a bounce of a tile's paths) go to streams, which beat single rays on
+        // them (bench's diffuse and bounce rays, docs/performance.md).
+        // Their shadow rays too: streams beat the single-ray kernel with its shadow cache there
+        // (path-traced scenes/sponza_path.json: 1.21-1.26 s against 1.29-1.33 s).
+        incoherent = *table.find("stream");
     } else {
         const Kernel<N>* k = table.find(choice.kernel);
         if (!k) throw InputError("--kernel", "", "no kernel is named '" + choice.kernel + "'");

@@ -26,6 +26,7 @@ struct RenderArgs {
     int spp = 0;
     std::string aov = "color";
     std::string backend = "wideray";
+    std::string shadingOrder = "material";
     bool compareBackends = false;
     EngineOptions engine;
 };
@@ -85,6 +86,7 @@ void renderOne(const RenderArgs& args, const std::string& sceneFile) {
     if (!args.size.empty()) std::tie(options.width, options.height) = parseSize(args.size);
     options.samplesPerPixel = args.spp;
     options.aov = parseAov(args.aov);
+    options.shadingOrder = args.shadingOrder == "ray" ? ShadingOrder::Ray : ShadingOrder::Material;
     options.progress = true;
     options.label = sceneFile;
     RenderStats stats;
@@ -142,6 +144,11 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                     "Who traces the rays: wideray (our kernels) or embree (Intel Embree, with its default BVH "
                     "and its widest native packets; --kernel, --isa and --bvh-width do not apply)")
         ->check(CLI::IsMember(backendNames()))
+        ->capture_default_str();
+    cmd->add_option("--shading-order", args->shadingOrder,
+                    "Order in which each bounce's hits are shaded: material (grouped by material) or ray (as traced); "
+                    "the images agree up to the rounding of the pixel sums")
+        ->check(CLI::IsMember({"material", "ray"}))
         ->capture_default_str();
     cmd->add_flag("--compare-backends", args->compareBackends,
                   "Also render through the other backend and print pixel difference statistics");
