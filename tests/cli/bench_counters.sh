@@ -12,7 +12,7 @@ import json, sys
 results = json.load(open(sys.argv[1]))["results"]
 fields = ("nodes_per_ray", "leaves_per_ray", "primitives_per_ray")
 counted = [r for r in results if r["backend"] == "wideray" and r["kernel"] != "single+cache"]  # no costs there
-assert {r["ray_kind"] for r in counted} == {"primary", "shadow", "diffuse"}, "a ray kind without results of ours"
+assert {r["ray_kind"] for r in counted} == {"primary", "shadow", "diffuse", "bounce"}, "a ray kind without results of ours"
 for r in counted:
     assert all(r.get(f, 0) > 0 for f in fields), r
     assert r["leaves_per_ray"] <= r["primitives_per_ray"], r
