@@ -72,6 +72,8 @@ bench: deps
 
 ## Renders every effect scene to docs/gallery/NAME.png.
 GALLERY_SCENES := beer metals soft_shadows glossy dof textures fog polarization polarization_off
+# The path-traced interior needs the shared Sponza.
+GALLERY_SCENES += $(if $(wildcard $(SCENES_DIR)/crytek-sponza/sponza.obj),sponza_path)
 gallery: configure
 	cmake --build $(BUILD) -j $(JOBS) --target wideray
 	mkdir -p docs/gallery

@@ -17,7 +17,7 @@ import sys
 from collections import OrderedDict
 from xml.sax.saxutils import escape
 
-RAY_KINDS = ("primary", "shadow", "diffuse")
+RAY_KINDS = ("primary", "shadow", "diffuse", "bounce")
 OUR_KERNELS = ("scalar", "single", "packet4", "packet8", "packet16", "packet256", "stream", "drst", "single+cache")
 ANALYSIS_FILE = "performance-analysis.md"
 
@@ -168,6 +168,9 @@ is one warm-up and then the median of the timed runs.
   the light (coherent).
 - **diffuse**: from each primary hit, one cosine-weighted direction about the geometric normal turned
   toward the camera, tnear = 1e-3 R, seeded by the pixel (incoherent).
+- **bounce**: the rays of bounces 2 to 4 of the path tracer (`"integrator": "path"`) at one sample
+  per pixel from the same camera, over the scene's materials, tile after tile as the renderer traces
+  them (incoherent: origins all over the scene, directions sampled from the materials).
 
 Our kernels traverse an 8-wide BVH (our fast build). Embree builds once at `RTC_BUILD_QUALITY_MEDIUM`
 and once at `RTC_BUILD_QUALITY_HIGH` (spatial splits); every Embree entry point traces both, is called
