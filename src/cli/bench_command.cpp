@@ -96,23 +96,35 @@ WorkPerRay countWork(const Candidate& c, const std::vector<Ray>& rays, bool anyH
     return {w.nodes / n, w.leaves / n, w.primitives / n};
 }
 
-Measurement measure(const Candidate& c, const std::vector<Ray>& rays, bool anyHit, bool coherent, int runs) {
+/// Every candidate on the same rays, the runs taken round-robin (one run of each candidate, then the
+/// next run of each) so that the machine's drift over time touches every candidate alike; after one
+/// warm-up run each (caches, page faults, thread start). Medians of the runs.
+std::vector<Measurement> measureAll(const std::vector<const Candidate*>& candidates, const std::vector<Ray>& rays,
+                                    bool anyHit, bool coherent, int runs, const std::string& label) {
     std::vector<Hit> hits(anyHit ? 0 : rays.size());
     std::vector<uint8_t> occluded(anyHit ? rays.size() : 0);
-    auto once = [&] {
+    auto once = [&](const Candidate& c) {
         auto start = Clock::now();
         traceAll(c, rays, anyHit, coherent, hits, occluded, nullptr);
         return std::chrono::duration<double>(Clock::now() - start).count();
     };
-    once();  // warm-up: caches, page faults, thread start
-    std::vector<double> seconds;
-    for (int i = 0; i < runs; ++i) seconds.push_back(once());
-    std::sort(seconds.begin(), seconds.end());
-    Measurement m;
-    double median = seconds[seconds.size() / 2];
-    m.mraysPerSecond = median > 0 ? double(rays.size()) / median * 1e-6 : 0.0;
-    m.hits = anyHit ? size_t(std::count(occluded.begin(), occluded.end(), 1))
-                    : size_t(std::count_if(hits.begin(), hits.end(), [](const Hit& h) { return h.valid(); }));
+    std::vector<Measurement> m(candidates.size());
+    std::vector<std::vector<double>> seconds(candidates.size());
+    for (size_t i = 0; i < candidates.size(); ++i) {
+        fmt::print(stderr, "\r{} {} {}: warm-up...            ", label, candidates[i]->kernel, candidates[i]->isa);
+        once(*candidates[i]);
+        m[i].hits = anyHit ? size_t(std::count(occluded.begin(), occluded.end(), 1))
+                           : size_t(std::count_if(hits.begin(), hits.end(), [](const Hit& h) { return h.valid(); }));
+    }
+    for (int run = 0; run < runs; ++run) {
+        fmt::print(stderr, "\r{}: run {} of {}...                              ", label, run + 1, runs);
+        for (size_t i = 0; i < candidates.size(); ++i) seconds[i].push_back(once(*candidates[i]));
+    }
+    for (size_t i = 0; i < candidates.size(); ++i) {
+        std::sort(seconds[i].begin(), seconds[i].end());
+        const double median = seconds[i][seconds[i].size() / 2];
+        m[i].mraysPerSecond = median > 0 ? double(rays.size()) / median * 1e-6 : 0.0;
+    }
     return m;
 }
 
@@ -219,11 +231,14 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
         if (set.empty()) continue;
         const bool anyHit = kind.anyHit, coherent = kind.coherent;
         std::map<std::string, std::pair<double, std::string>> embreeBest;  // kernel -> (Mrays/s, quality)
+        std::vector<const Candidate*> timed;
+        for (const Candidate& c : candidates)
+            if (anyHit || c.kernel != "single+cache") timed.push_back(&c);  // the cache is for shadow rays only
+        const std::vector<Measurement> times = measureAll(timed, set, anyHit, coherent, args.runs, name + " " + kindName);
         std::vector<std::pair<const Candidate*, Measurement>> measured;
-        for (const Candidate& c : candidates) {
-            if (!anyHit && c.kernel == "single+cache") continue;  // the cache is for shadow rays only
-            fmt::print(stderr, "\r{} {} {} {}...            ", name, kindName, c.kernel, c.isa);
-            Measurement m = measure(c, set, anyHit, coherent, args.runs);
+        for (size_t i = 0; i < timed.size(); ++i) {
+            const Candidate& c = *timed[i];
+            Measurement m = times[i];
             if (args.counters && c.countsWork) m.work = countWork(c, set, anyHit, coherent);
             if (c.backend == "embree" && m.mraysPerSecond > embreeBest[c.kernel].first)
                 embreeBest[c.kernel] = {m.mraysPerSecond, c.quality};

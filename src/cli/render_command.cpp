@@ -13,6 +13,7 @@
 #include "core/fp_mode.h"
 #include "io/image_io.h"
 #include "io/mesh_framing.h"
+#include "io/scene_vocabulary.h"
 #include "render/image_difference.h"
 #include "render/renderer.h"
 
@@ -27,6 +28,7 @@ struct RenderArgs {
     std::string aov = "color";
     std::string backend = "wideray";
     std::string shadingOrder = "material";
+    std::string integrator;  ///< empty: the scene's
     bool compareBackends = false;
     EngineOptions engine;
 };
@@ -77,6 +79,8 @@ BackendTracer buildTracer(const RenderArgs& args, const std::string& backendName
 void renderOne(const RenderArgs& args, const std::string& sceneFile) {
     using Clock = std::chrono::steady_clock;
     Scene scene = loadSceneOrMesh(sceneFile, 1024, 1024);
+    for (const auto& [name, integrator] : kIntegrators)
+        if (name == args.integrator) scene.render.integrator = integrator;
     auto start = Clock::now();
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     BackendTracer built = buildTracer(args, args.backend, geometry);
@@ -109,9 +113,10 @@ void renderOne(const RenderArgs& args, const std::string& sceneFile) {
         Image otherImage = render(scene, *other.tracer, options, otherStats);
         if (options.aov == Aov::Depth) normalizeDepth(otherImage, out);
         ImageDifference d = compareImages(image, otherImage, 1.0f / 255.0f);
-        fmt::print("  vs {} ({:.2f} Mrays/s): mean |difference| {:.6f}, max {:.4f}, {} of {} pixels differ by more "
-                   "than 1/255\n",
-                   other.engine, otherStats.mraysPerSecond(), d.meanAbsolute, d.maxAbsolute, d.pixelsOver, d.pixels);
+        fmt::print("  vs {} (render {:.1f} ms, {:.2f} Mrays/s): mean |difference| {:.6f}, max {:.4f}, {} of {} pixels "
+                   "differ by more than 1/255\n",
+                   other.engine, otherStats.seconds * 1e3, otherStats.mraysPerSecond(), d.meanAbsolute, d.maxAbsolute,
+                   d.pixelsOver, d.pixels);
     }
     std::fflush(stdout);
 }
@@ -145,6 +150,13 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                     "and its widest native packets; --kernel, --isa and --bvh-width do not apply)")
         ->check(CLI::IsMember(backendNames()))
         ->capture_default_str();
+    cmd->add_option("--integrator", args->integrator,
+                    "How light is gathered, overriding the scene's render.integrator: whitted or path")
+        ->check(CLI::IsMember([] {
+            std::vector<std::string> names;
+            for (const auto& [name, integrator] : kIntegrators) names.push_back(name);
+            return names;
+        }()));
     cmd->add_option("--shading-order", args->shadingOrder,
                     "Order in which each bounce's hits are shaded: material (grouped by material) or ray (as traced); "
                     "the images agree up to the rounding of the pixel sums")

@@ -6,8 +6,11 @@
 // every child box, K rays per SIMD test, into lists for the children; leaves test K rays per
 // triangle. Each ray is culled against its own closest hit. Two orders (StreamOrder): one list per
 // child, children in the order of their nearest ray, or each ray in its own nearest-first order as
-// in Dynamic Ray Stream Traversal, which splits the lists finer. Triangle arithmetic is the
-// reference's, lane by lane.
+// in Dynamic Ray Stream Traversal, which splits the lists finer. Near the leaves the lists get too
+// short to fill a vector; there each ray finishes the subtree alone with the single-ray kernel
+// (the hybrid of Benthin, Wald, Woop, Ernst and Mark 2012, "Combining Single and Packet-Ray Tracing
+// for Arbitrary Ray Distributions on the Intel MIC Architecture", applied to streams). Triangle
+// arithmetic is the reference's, lane by lane or ray by ray.
 #include "kernels/stream_workspace.h"
 #include "kernels/traverse_packet.h"
 
