@@ -50,7 +50,7 @@ inline size_t loadStream(const Ray* rays, size_t count, StreamWorkspace& ws) {
     for (size_t i = 0; i < count; ++i) {
         if (!ws.valid[i]) continue;
         const Ray& r = rays[i];
-        uint32_t octant = (r.dx < 0.0f ? 12u : 0u) | (r.dy < 0.0f ? 2u : 0u) | (r.dz < 0.0f ? 4u : 0u);
+        uint32_t octant = (r.dx < 0.0f ? 1u : 0u) | (r.dy < 0.0f ? 2u : 0u) | (r.dz < 0.0f ? 4u : 0u);
         uint32_t morton = spreadBits10(uint32_t((r.ox - lo[0]) * scale[0])) |
                           (spreadBits10(uint32_t((r.oy - lo[1]) * scale[1])) << 1) |
                           (spreadBits10(uint32_t((r.oz - lo[2]) * scale[2])) << 2);
