@@ -45,7 +45,7 @@ std::vector<Ray> bounceRays(const Scene& scene, const Tracer& tracer, int width,
         buf.lastRecorded = kLastBounce;
         buf.recorded.clear();
         renderer.render(order.tiles()[t], buf);
-        perTile[t] = buf.recorded;
+        perTile[t] = std::move(buf.recorded);
     });
     std::vector<Ray> rays;
     for (const std::vector<Ray>& tile : perTile) rays.insert(rays.end(), tile.begin(), tile.end());

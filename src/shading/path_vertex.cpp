@@ -76,11 +76,12 @@ void sampleDirectLight(const ShadingContext& context, const PathState& path, con
 }
 
 /// Continues `path` from `position` along `direction` with the event's factor; `scatterPdf` as in
-/// PathState. Russian roulette may end it.
+/// PathState. A depolarizing event first averages the s and p throughputs. Russian roulette may end it.
 void continuePath(const ShadingContext& context, const PathState& path, const glm::vec3& position,
                   const glm::vec3& direction, const PolarizedFactor& factor, float scatterPdf, const MediumStack& media,
-                  SampleRng& rng, ScatterOutput& out) {
+                  SampleRng& rng, ScatterOutput& out, bool depolarize = false) {
     PathState next = path;
+    if (depolarize) next.throughputS = next.throughputP = path.throughput();
     next.ray = Ray{position.x, position.y, position.z, direction.x, direction.y, direction.z, context.epsilon, INFINITY};
     next.depth = path.depth + 1;
     next.scatterPdf = scatterPdf;
@@ -165,9 +166,8 @@ void scatterPathVertex(const ShadingContext& context, const PathState& path, con
     PolarizedFactor weight;
     float pdf;
     if (!lobes.sample(rng, l, weight, pdf)) return;
-    PathState depolarized = path;
-    if (material.type != MaterialType::Conductor) depolarized.throughputS = depolarized.throughputP = path.throughput();
-    continuePath(context, depolarized, sp.position, l, weight, pdf, path.media, rng, out);
+    continuePath(context, path, sp.position, l, weight, pdf, path.media, rng, out,
+                 material.type != MaterialType::Conductor);
 }
 
 } // namespace wideray
