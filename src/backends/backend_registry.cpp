@@ -1,14 +1,14 @@
 #include "backends/backend_registry.h"
 
+#include "backends/accel_registry.h"
 #include "backends/embree_structure.h"
-#include "backends/wideray_structure.h"
 #include "core/error.h"
 
 namespace wideray {
 namespace {
 
 constexpr Backend kBackends[] = {
-    {"wideray", "our kernels over our wide BVH", &buildWideBvh},
+    {"wideray", "our kernels over our structures (--accel: wide BVH by default)", &buildWideray},
     {"embree", "Intel Embree 3 (the yardstick)", &buildEmbree},
 };
 

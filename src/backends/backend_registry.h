@@ -11,6 +11,8 @@
 namespace wideray {
 
 struct StructureOptions {
+    /// wideray: the structure (backends/accel_registry.h); empty: the wide BVH of bvhWidth
+    std::string accel;
     int bvhWidth = 8;  ///< wideray: children per node, 4 or 8
     /// wideray: fast (object splits) or high (spatial splits too); embree: low, medium or high
     /// (RTC_BUILD_QUALITY_*), fast meaning medium. Empty: the backend's default (fast, medium).

@@ -7,9 +7,7 @@
 #include "core/error.h"
 
 namespace wideray {
-namespace {
 
-/// The ISA a choice asks for, checked against this CPU; throws InputError.
 Isa chosenIsa(const KernelChoice& choice) {
     const Isa isa = choice.isa.value_or(bestIsa());
     if (!cpuSupports(isa))
@@ -17,8 +15,6 @@ Isa chosenIsa(const KernelChoice& choice) {
                                           isaName(bestIsa()) + ")");
     return isa;
 }
-
-} // namespace
 
 template <int N>
 BvhBuildConfig buildConfig(BuildQuality quality) {

@@ -30,7 +30,10 @@ private:
     SceneAccel<N> accel_;
 };
 
-/// The backend row's build function: BVH4 or BVH8 as options.bvhWidth says, fast or high quality.
+/// The ISA a choice asks for, checked against this CPU; throws InputError.
+Isa chosenIsa(const KernelChoice& choice);
+
+/// The bvh4 and bvh8 rows' build function: BVH4 or BVH8 as options.bvhWidth says, fast or high quality.
 std::shared_ptr<const Structure> buildWideBvh(std::shared_ptr<const SceneGeometry> geometry,
                                               const StructureOptions& options);
 

@@ -15,6 +15,7 @@ struct EngineOptions {
     int threads = 0;  ///< 0: all hardware threads
     std::string kernel = "auto";
     std::string isa = "auto";
+    std::string accel;  ///< empty: the wide BVH of bvhWidth
     int bvhWidth = 8;
     std::string quality = "fast";
     std::string shadowCache = "on";
@@ -23,6 +24,9 @@ struct EngineOptions {
 void addEngineOptions(CLI::App& app, EngineOptions& options);
 /// --quality fast|high.
 void addQualityOption(CLI::App& app, std::string& quality);
+/// The --accel choices (backends/accel_registry.h's rows) and their help, for one name or a list.
+std::vector<std::string> accelNames();
+std::string accelHelp(bool list);
 /// The kernels the options ask for.
 KernelChoice kernelChoice(const EngineOptions& options);
 

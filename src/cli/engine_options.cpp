@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include "backends/accel_registry.h"
 #include "cli/commands.h"
 #include "kernels/kernel_registry.h"
 
@@ -37,6 +38,20 @@ void addEngineOptions(CLI::App& app, EngineOptions& options) {
         ->check(CLI::IsMember({4, 8}))
         ->capture_default_str();
     addQualityOption(app, options.quality);
+    app.add_option("--accel", options.accel, accelHelp(false))->check(CLI::IsMember(accelNames()));
+}
+
+std::vector<std::string> accelNames() {
+    std::vector<std::string> names;
+    for (const Accel& a : accels()) names.push_back(a.name);
+    return names;
+}
+
+std::string accelHelp(bool list) {
+    std::string help = list ? "Acceleration structures to measure, comma-separated:" : "Acceleration structure:";
+    for (const Accel& a : accels()) help += fmt::format(" {} ({});", a.name, a.description);
+    help += " the course's structures (all but bvh4 and bvh8) trace one ray at a time (docs/accelerators.md)";
+    return help;
 }
 
 void addQualityOption(CLI::App& app, std::string& quality) {

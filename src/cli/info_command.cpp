@@ -21,7 +21,11 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
         ->check(CLI::IsMember({"sse42", "avx2", "avx512", "auto"}))
         ->capture_default_str();
     addQualityOption(*cmd, *quality);
-    cmd->callback([files, isa, quality, &exitCode] {
+    auto accel = std::make_shared<std::vector<std::string>>();
+    cmd->add_option("--accel", *accel, accelHelp(true) + " (default: bvh4,bvh8)")
+        ->check(CLI::IsMember(accelNames()))
+        ->delimiter(',');
+    cmd->callback([files, isa, quality, accel, &exitCode] {
         FlushToZeroScope ftz;
         Isa chosen = *isa == "auto" ? bestIsa() : *parseIsa(*isa);
         fmt::print("CPU: {}; detected ISA: {}; chosen ISA: {}{}\n", cpuModelName(), isaName(bestIsa()),
@@ -37,11 +41,12 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
                            geometry->triangleCount(), dropped, scene.spheres.size(), scene.meshes.size(),
                            scene.instances.size());
                 const Backend& ours = findBackend("wideray");
-                for (int width : {4, 8}) {
+                for (const std::string& name : accel->empty() ? std::vector<std::string>{"bvh4", "bvh8"} : *accel) {
                     StructureOptions options;
-                    options.bvhWidth = width;
+                    options.accel = name;
                     options.quality = *quality;
-                    fmt::print("{}\n", ours.build(geometry, options)->summary());
+                    std::shared_ptr<const Structure> structure = ours.build(geometry, options);
+                    fmt::print("{}; {:.1f} MB\n", structure->summary(), double(structure->bytes()) / 1e6);
                 }
             } catch (const std::exception& e) {
                 fmt::print(stderr, "error: {}\n", e.what());

@@ -67,6 +67,7 @@ struct BackendTracer {
 BackendTracer buildTracer(const RenderArgs& args, const std::string& backendName,
                           std::shared_ptr<const SceneGeometry> geometry) {
     StructureOptions options;
+    options.accel = args.engine.accel;
     options.bvhWidth = args.engine.bvhWidth;
     options.quality = args.engine.quality;
     std::shared_ptr<const Structure> structure = findBackend(backendName).build(std::move(geometry), options);

@@ -33,6 +33,7 @@ struct TraversalCost {
     uint32_t nodes = 0;       ///< inner nodes whose children were tested
     uint32_t leaves = 0;      ///< leaves entered
     uint32_t primitives = 0;  ///< primitive tests (a triangle block counts its kBlockSize slots)
+    uint32_t mailboxHits = 0; ///< kd-tree and grids: tests skipped, the ray having tested the primitive before
 };
 
 } // namespace wideray
