@@ -6,7 +6,7 @@ JOBS ?= $(shell nproc)
 SCENE ?= scenes/default.json
 GENERATOR := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
 
-.PHONY: all deps configure build run test sanitize bench gallery install clean
+.PHONY: all deps configure build run test sanitize bench bench-accelerators gallery install clean
 
 all: build
 
@@ -59,6 +59,14 @@ SCALING_COMMAND = $(BUILD)/wideray bench $(wildcard $(addprefix $(SCENES_DIR)/,$
 SCALING_LOOP = for t in $(SCALING_THREADS); do $(SCALING_COMMAND) --threads $$t --json out/scaling-$$t-threads.json || exit 1; done
 SCALING_MERGE = python3 scripts/performance_report.py merge out/scaling.json $(foreach t,$(SCALING_THREADS),out/scaling-$(t)-threads.json)
 
+# The acceleration structures side by side (docs/accelerators.md): our single-ray kernels over every
+# structure of --accel, on the same meshes and interiors and on the teapot in a stadium.
+ACCEL_SIZE ?= 512x512
+ACCEL_SCENES ?= $(BENCH_SCENES) scenes/teapot_stadium.json
+ACCEL_COMMAND = $(BUILD)/wideray bench $(wildcard $(addprefix $(SCENES_DIR)/,$(BENCH_MESHES))) $(ACCEL_SCENES) \
+  --size $(ACCEL_SIZE) --runs 3 --backend wideray --rays primary,shadow,diffuse \
+  --accel bvh4,bvh2,skip,kdtree,grid,hgrid,rgrid --counters --json out/accelerators.json
+
 bench: deps
 	@test -d $(SCENES_DIR) || { echo "make bench needs the shared meshes in $(SCENES_DIR) (set SCENES_DIR)" >&2; exit 1; }
 	cmake -S . -B $(BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=Release
@@ -69,6 +77,16 @@ bench: deps
 	python3 scripts/performance_report.py report --bench out/bench.json --scaling out/scaling.json \
 	  --command '$(BENCH_COMMAND)' --command '$(SCALING_LOOP)' --command '$(SCALING_MERGE)' \
 	  --markdown docs/performance.md --chart docs/performance.svg
+	$(MAKE) --no-print-directory bench-accelerators
+
+## The acceleration structures alone (part of make bench): out/accelerators.json, docs/accelerators.md.
+bench-accelerators: deps
+	@test -d $(SCENES_DIR) || { echo "make bench-accelerators needs the shared meshes in $(SCENES_DIR) (set SCENES_DIR)" >&2; exit 1; }
+	cmake -S . -B $(BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=Release
+	cmake --build $(BUILD) -j $(JOBS) --target wideray
+	$(ACCEL_COMMAND)
+	python3 scripts/accelerators_report.py --bench out/accelerators.json --command '$(ACCEL_COMMAND)' \
+	  --why docs/accelerators-why.md --markdown docs/accelerators.md
 
 ## Renders every effect scene to docs/gallery/NAME.png.
 GALLERY_SCENES := beer metals soft_shadows glossy dof textures fog polarization polarization_off

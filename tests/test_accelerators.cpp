@@ -21,6 +21,7 @@
 #include "io/mesh_generators.h"
 #include "kernels/kernel_registry.h"
 #include "render/bench_rays.h"
+#include "render/renderer.h"
 #include "backends/wideray_structure.h"
 #include "ray_sets.h"
 #include "test_data.h"
@@ -313,6 +314,27 @@ TEST(Accelerators, CourseStructuresHaveOneKernel) {
     high.accel = "kdtree";
     high.quality = "high";
     EXPECT_THROW(findBackend("wideray").build(geometry, high), InputError);
+}
+
+TEST(Accelerators, RenderTheSameImageAndDrawTheirCost) {
+    // Same hits, so the same image: the default scene (mirror, glass, spheres, shadows) through every
+    // structure equals the render through the scalar reference of the same ISA; the cost AOV draws
+    // each structure's own work.
+    FlushToZeroScope ftz;
+    Scene scene = loadSceneOrMesh(std::filesystem::path(WIDERAY_SOURCE_DIR) / "scenes/default.json");
+    auto geometry = std::make_shared<const SceneGeometry>(scene);
+    RenderOptions options;
+    options.width = options.height = 48;
+    RenderStats stats;
+    const Image expected = render(scene, *buildWideBvh(geometry, {})->tracer({"scalar"}), options, stats);
+    for (const std::string& name : courseAccels()) {
+        auto s = buildCourse(name, geometry);
+        options.aov = Aov::Color;
+        EXPECT_TRUE(render(scene, *s->tracer({}), options, stats).pixels == expected.pixels) << name;
+        options.aov = Aov::Cost;
+        render(scene, *s->tracer({}), options, stats);
+        EXPECT_GT(stats.maxCost, 0u) << name;
+    }
 }
 
 } // namespace

@@ -21,8 +21,8 @@ constexpr Accel kAccels[] = {
     {"bvh2", "binary SAH BVH, stack traversal nearest child first", &buildBvh2},
     {"skip", "the binary BVH in depth-first order with miss links, stackless traversal", &buildSkipBvh},
     {"kdtree", "SAH kd-tree (Wald and Havran 2006) with split clipping, front-to-back traversal", &buildKdTreeStructure},
-    {"grid", "uniform grid, about 2 cells per primitive, 3D-DDA with mailboxing", &buildUniformGrid},
-    {"hgrid", "hierarchical grid: the uniform grid with a finer grid in each cell of more than 16 primitives",
+    {"grid", "uniform grid, about 8 cells per primitive, 3D-DDA with mailboxing", &buildUniformGrid},
+    {"hgrid", "hierarchical grid: about 2 cells per primitive, a finer grid in each cell of more than 16",
      &buildHierarchicalGrid},
     {"rgrid", "recursive grid: a coarse grid, crowded cells refined again, up to 5 levels", &buildRecursiveGrid},
 };

@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "backends/backend_registry.h"
+#include "backends/course_structure.h"
 #include "backends/embree_tracer.h"
 #include "backends/wideray_structure.h"
 #include "cli/commands.h"
@@ -43,6 +44,8 @@ struct BenchArgs {
     std::string backend = "both";
     std::string quality = "fast";  ///< our builds: fast, high or both
     bool counters = false;         ///< also count our kernels' work per ray
+    /// Our structures besides BVH8 (whose kernels are always measured): bvh4 and the course's.
+    std::vector<std::string> accels;
 };
 
 constexpr size_t kChunk = 4096;  // rays per task: sixteen 16x16 tiles
@@ -54,6 +57,7 @@ using TraceFn = std::function<void(const Ray* rays, size_t count, Hit* hits, uin
 
 struct Candidate {
     std::string backend, kernel, isa;
+    std::string accel;        ///< the structure it traces: bvh8, bvh4, kdtree, ...; "embree" for Embree's
     std::string quality;      ///< the build it traces: ours "fast" or "high"; Embree's "medium" or "high"
     std::string counterpart;  ///< the Embree kernel ours is compared with
     TraceFn trace;
@@ -71,7 +75,7 @@ void traceAll(const Candidate& c, const std::vector<Ray>& rays, bool anyHit, boo
 
 /// Work per ray, averaged over a ray set.
 struct WorkPerRay {
-    double nodes = 0, leaves = 0, primitives = 0;
+    double nodes = 0, leaves = 0, primitives = 0, mailboxHits = 0;
 };
 
 struct Measurement {
@@ -91,9 +95,10 @@ WorkPerRay countWork(const Candidate& c, const std::vector<Ray>& rays, bool anyH
         w.nodes += c.nodes;
         w.leaves += c.leaves;
         w.primitives += c.primitives;
+        w.mailboxHits += c.mailboxHits;
     }
     const double n = double(std::max<size_t>(1, rays.size()));
-    return {w.nodes / n, w.leaves / n, w.primitives / n};
+    return {w.nodes / n, w.leaves / n, w.primitives / n, w.mailboxHits / n};
 }
 
 /// Every candidate on the same rays, the runs taken round-robin (one run of each candidate, then the
@@ -128,28 +133,47 @@ std::vector<Measurement> measureAll(const std::vector<const Candidate*>& candida
     return m;
 }
 
+/// Our kernels over a wide BVH (with `only`, those named there).
 template <int N>
-std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, const std::string& quality, bool allIsas) {
+std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, const std::string& quality, bool allIsas,
+                                     const std::vector<std::string>& only = {}) {
     std::vector<Candidate> out;
     SceneView<N> view = accel.view();
+    const std::string accelName = "bvh" + std::to_string(N);
     for (Isa isa : supportedIsas()) {
         if (!allIsas && isa != bestIsa()) continue;
         for (const Kernel<N>& k : kernelTable<N>(isa).rows) {
             if (!k.available()) continue;
+            if (!only.empty() && std::find(only.begin(), only.end(), k.name) == only.end()) continue;
             auto trace = [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool, TraversalCost* costs) {
                 if (h) k.intersect(view, r, h, n, costs);
                 else k.occluded(view, r, o, n, costs);
             };
-            out.push_back({"wideray", k.name, isaName(isa), quality, k.embreeCounterpart, trace, true});
+            out.push_back({"wideray", k.name, isaName(isa), accelName, quality, k.embreeCounterpart, trace, true});
             // The shadow cache: one per task, so that each chunk of rays starts cold (as a renderer tile would).
             if (k.occludedCached)
-                out.push_back({"wideray", std::string(k.name) + "+cache", isaName(isa), quality, k.embreeCounterpart,
+                out.push_back({"wideray", std::string(k.name) + "+cache", isaName(isa), accelName, quality, k.embreeCounterpart,
                                [view, k](const Ray* r, size_t n, Hit* h, uint8_t* o, bool, TraversalCost*) {
                                    if (h) return;
                                    ShadowCache cache;
                                    k.occludedCached(view, r, o, n, cache);
                                }});
         }
+    }
+    return out;
+}
+
+/// A course structure's single-ray kernel for each ISA measured.
+std::vector<Candidate> courseCandidates(std::shared_ptr<const CourseStructure> structure, const std::string& accel,
+                                        bool allIsas) {
+    std::vector<Candidate> out;
+    for (Isa isa : supportedIsas()) {
+        if (!allIsas && isa != bestIsa()) continue;
+        out.push_back({"wideray", "single", isaName(isa), accel, "fast", "rtcIntersect1",
+                       [structure, isa](const Ray* r, size_t n, Hit* h, uint8_t* o, bool, TraversalCost* costs) {
+                           structure->trace(isa, r, n, h, o, costs);
+                       },
+                       true});
     }
     return out;
 }
@@ -161,7 +185,7 @@ std::vector<Candidate> embreeCandidates(const Structure& embree, const std::stri
                                 EmbreeKernel::Packet16, EmbreeKernel::Stream1M}) {
         if (!embreeSupports(kernel)) continue;
         std::shared_ptr<const Tracer> tracer = embree.tracer({embreeKernelName(kernel)});
-        out.push_back({"embree", embreeKernelName(kernel), "embree", quality, "",
+        out.push_back({"embree", embreeKernelName(kernel), "embree", "embree", quality, "",
                        [tracer](const Ray* r, size_t n, Hit* h, uint8_t* o, bool coherent, TraversalCost*) {
                            Coherence c = coherent ? Coherence::Coherent : Coherence::Incoherent;
                            if (h) tracer->intersect({r, n}, {h, n}, c);
@@ -193,7 +217,7 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
         StructureOptions options;
         options.quality = quality;
         ours.push_back(std::static_pointer_cast<const WideBvhStructure<8>>(findBackend("wideray").build(geometry, options)));
-        builds.push_back({{"scene", name}, {"backend", "wideray"}, {"quality", quality}, {"layout", ours.back()->name()},
+        builds.push_back({{"scene", name}, {"backend", "wideray"}, {"accel", "bvh8"}, {"quality", quality}, {"layout", ours.back()->name()},
                           {"seconds", ours.back()->buildSeconds()}, {"bytes", ours.back()->bytes()},
                           {"references", ours.back()->accel().triangleReferences()}});
     }
@@ -205,9 +229,36 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
         builds.push_back({{"scene", name}, {"backend", "embree"}, {"quality", quality},
                           {"seconds", embree.back().second->buildSeconds()}, {"bytes", embree.back().second->bytes()}});
     }
+
+    // Our other structures: BVH4 with its single-ray kernels, the course's structures with theirs.
+    std::vector<Candidate> others;
+    std::vector<std::shared_ptr<const Structure>> keepAlive;  // what the candidates' views point into
+    for (const std::string& accel : args.accels) {
+        if (accel == "bvh8") continue;
+        StructureOptions options;
+        options.accel = accel;
+        if (accel == "bvh4") {
+            for (const char* quality : {"fast", "high"}) {
+                if (args.quality != quality && args.quality != "both") continue;
+                options.quality = quality;
+                auto bvh4 = std::static_pointer_cast<const WideBvhStructure<4>>(findBackend("wideray").build(geometry, options));
+                builds.push_back({{"scene", name}, {"backend", "wideray"}, {"accel", accel}, {"quality", quality},
+                                  {"layout", bvh4->name()}, {"seconds", bvh4->buildSeconds()}, {"bytes", bvh4->bytes()}});
+                for (Candidate& c : ourCandidates(bvh4->accel(), quality, args.allIsas, {"scalar", "single"}))
+                    others.push_back(std::move(c));
+                keepAlive.push_back(bvh4);
+            }
+            continue;
+        }
+        fmt::print(stderr, "{}: building {}...\n", name, accel);
+        auto course = std::dynamic_pointer_cast<const CourseStructure>(findBackend("wideray").build(geometry, options));
+        builds.push_back({{"scene", name}, {"backend", "wideray"}, {"accel", accel}, {"quality", "fast"},
+                          {"layout", course->name()}, {"seconds", course->buildSeconds()}, {"bytes", course->bytes()}});
+        for (Candidate& c : courseCandidates(course, accel, args.allIsas)) others.push_back(std::move(c));
+    }
     for (const auto& b : builds)
         if (b["scene"] == name)
-            fmt::print("{}: build {} {}: {:.1f} ms, {:.1f} MB\n", name, std::string(b["backend"]),
+            fmt::print("{}: build {} {}: {:.1f} ms, {:.1f} MB\n", name, std::string(b.value("accel", "embree")),
                        std::string(b["quality"]), double(b["seconds"]) * 1e3, double(b["bytes"]) / 1e6);
 
     BenchRays rays = makeBenchRays(scene, *ours.front()->tracer({"scalar"}), width, height);
@@ -218,6 +269,8 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
         for (const auto& structure : ours)
             for (Candidate& c : ourCandidates(structure->accel(), structure->qualityName(), args.allIsas))
                 candidates.push_back(std::move(c));
+    if (args.backend != "embree")
+        for (Candidate& c : others) candidates.push_back(std::move(c));
     if (args.backend != "wideray")
         for (const auto& [quality, structure] : embree)
             for (Candidate& c : embreeCandidates(*structure, quality)) candidates.push_back(std::move(c));
@@ -247,6 +300,7 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
         fmt::print(stderr, "\r{:60}\r", "");
         for (const auto& [c, m] : measured) {
             std::string kernel = anyHit && c->backend == "embree" ? std::string(c->kernel).replace(3, 9, "Occluded") : c->kernel;
+            const std::string label = c->accel == "bvh8" || c->accel == "embree" ? kernel : c->accel + "/" + kernel;
             std::string versus;
             if (auto it = embreeBest.find(c->counterpart); it != embreeBest.end() && it->second.first > 0) {
                 std::string counterpart = anyHit ? std::string(c->counterpart).replace(3, 9, "Occluded") : c->counterpart;
@@ -255,16 +309,17 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
             std::string work;
             if (m.work) work = fmt::format("{:>9.1f} {:>10.2f} {:>10.1f} ", m.work->nodes, m.work->leaves, m.work->primitives);
             else if (args.counters) work = fmt::format("{:>9} {:>10} {:>10} ", "-", "-", "-");
-            fmt::print("{:<28} {:<8} {:<8} {:<15} {:<8} {:<7} {:>10.2f} {:>9} {}{}\n", name, kindName, c->backend, kernel,
+            fmt::print("{:<28} {:<8} {:<8} {:<15} {:<8} {:<7} {:>10.2f} {:>9} {}{}\n", name, kindName, c->backend, label,
                        c->isa, c->quality, m.mraysPerSecond, m.hits, work, versus);
             nlohmann::json result = {{"scene", name}, {"triangles", geometry->triangleCount()}, {"ray_kind", kindName},
-                                     {"backend", c->backend}, {"kernel", kernel}, {"isa", c->isa}, {"quality", c->quality},
+                                     {"backend", c->backend}, {"accel", c->accel}, {"kernel", kernel}, {"isa", c->isa}, {"quality", c->quality},
                                      {"workload", workload}, {"threads", threads}, {"rays", set.size()}, {"hits", m.hits},
                                      {"mrays_per_s", m.mraysPerSecond}, {"runs", args.runs}};
             if (m.work) {
                 result["nodes_per_ray"] = m.work->nodes;
                 result["leaves_per_ray"] = m.work->leaves;
                 result["primitives_per_ray"] = m.work->primitives;
+                result["mailbox_hits_per_ray"] = m.work->mailboxHits;
             }
             results.push_back(std::move(result));
         }
@@ -301,6 +356,11 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_flag("--counters", args->counters,
                   "Also print our kernels' work per ray: inner nodes visited, leaves entered, primitives tested "
                   "(JSON: nodes_per_ray, leaves_per_ray, primitives_per_ray)");
+    cmd->add_option("--accel", args->accels,
+                    accelHelp(true) + ". BVH8 and all its kernels are always measured; bvh4 adds its scalar and single "
+                                      "kernels, each of the others its single-ray kernel (JSON: accel)")
+        ->check(CLI::IsMember(accelNames()))
+        ->delimiter(',');
     cmd->add_flag("--all-isas", args->allIsas, "Measure our kernels for every ISA this CPU has, not only the best");
     cmd->add_option("--json", args->json, "Write the results as JSON (fields: machine, results, builds)");
     cmd->callback([args, &exitCode] {

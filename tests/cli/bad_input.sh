@@ -77,7 +77,9 @@ fi
 
 # Bad command-line values are errors, and --help documents every command.
 for args in "render $work/good.json --size 0x10" "render $work/good.json --isa mmx" "render $work/good.json --spp 0" "render" \
-            "render $work/good.json --quality best" "info $work/good.json --quality medium"; do
+            "render $work/good.json --quality best" "info $work/good.json --quality medium" \
+            "render $work/good.json --accel octree" "render $work/good.json --accel kdtree --kernel packet4" \
+            "render $work/good.json --accel grid --quality high" "bench $work/good.json --accel bvh2,nope"; do
   "$wideray" $args >/dev/null 2>&1; status=$?
   if [ $status -eq 0 ] || [ $status -ge 128 ]; then echo "FAIL '$args' exited $status"; failures=$((failures + 1)); else echo "ok   '$args' rejected"; fi
 done
@@ -85,6 +87,6 @@ for cmd in "" render info; do
   if ! "$wideray" $cmd --help >/dev/null; then echo "FAIL '$cmd --help'"; failures=$((failures + 1)); fi
 done
 
-passed=$(( 17 - failures ))
+passed=$(( 21 - failures ))
 echo "cli: $passed passed, $failures failed"
 [ $failures -eq 0 ]
