@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
 
 namespace wideray {
@@ -50,20 +52,37 @@ struct Split {
     float cost = 0;
 };
 
+/// Nodes with more items build their two subtrees as parallel tasks.
+constexpr size_t kParallelItems = 4096;
+
+/// Appends a subtree built on its own: its child indices and item ranges move by where it lands.
+void append(KdTree& out, const KdTree& piece) {
+    const uint32_t nodeOffset = uint32_t(out.nodes.size()), itemOffset = uint32_t(out.items.size());
+    for (KdNode n : piece.nodes) {
+        if (n.isLeaf()) n.payload += itemOffset;
+        else n.bits += nodeOffset << 2;
+        out.nodes.push_back(n);
+    }
+    out.items.insert(out.items.end(), piece.items.begin(), piece.items.end());
+    out.depth = std::max(out.depth, piece.depth);
+    out.leaves += piece.leaves;
+    out.emptyLeaves += piece.emptyLeaves;
+}
+
 class KdBuilder {
 public:
-    KdBuilder(const PrimitiveTable& table, const KdTreeConfig& config, KdTree& out)
-        : table_(table), config_(config), out_(out), side_(table.size()), boxes_(table.size()) {
+    KdBuilder(const PrimitiveTable& table, const KdTreeConfig& config) : table_(table), config_(config) {
         maxDepth_ = config.maxDepth > 0 ? config.maxDepth
                                         : int(8.0 + 1.3 * std::log2(double(std::max<uint32_t>(table.size(), 1))));
         maxDepth_ = std::min(maxDepth_, kMaxKdTreeDepth);
     }
 
-    void build(NodeEvents& events, const Bounds3f& voxel, size_t count, int depth) {
-        out_.depth = std::max(out_.depth, depth + 1);
+    /// Builds the subtree of a node into `out` (its root first, lower subtrees before upper ones).
+    void build(NodeEvents& events, const Bounds3f& voxel, size_t count, int depth, KdTree& out) {
+        out.depth = std::max(out.depth, depth + 1);
         const Split split = findSplit(events, voxel, count);
         if (depth + 1 >= maxDepth_ || split.axis < 0 || split.cost >= config_.intersectionCost * float(count)) {
-            leaf(events, count);
+            leaf(events, count, out);
             return;
         }
         NodeEvents left, right;
@@ -73,12 +92,22 @@ public:
         Bounds3f leftVoxel = voxel, rightVoxel = voxel;
         leftVoxel.upper[split.axis] = split.pos;
         rightVoxel.lower[split.axis] = split.pos;
-        const size_t index = out_.nodes.size();
-        out_.nodes.emplace_back();
-        build(left, leftVoxel, leftCount, depth + 1);
-        const uint32_t upper = uint32_t(out_.nodes.size());
-        build(right, rightVoxel, rightCount, depth + 1);
-        KdNode& node = out_.nodes[index];
+        const size_t index = out.nodes.size();
+        out.nodes.emplace_back();
+        uint32_t upper;
+        if (count >= kParallelItems) {
+            KdTree lower, higher;
+            tbb::parallel_invoke([&] { build(left, leftVoxel, leftCount, depth + 1, lower); },
+                                 [&] { build(right, rightVoxel, rightCount, depth + 1, higher); });
+            append(out, lower);
+            upper = uint32_t(out.nodes.size());
+            append(out, higher);
+        } else {
+            build(left, leftVoxel, leftCount, depth + 1, out);
+            upper = uint32_t(out.nodes.size());
+            build(right, rightVoxel, rightCount, depth + 1, out);
+        }
+        KdNode& node = out.nodes[index];
         node.split = split.pos;
         node.bits = (upper << 2) | uint32_t(split.axis);
     }
@@ -125,29 +154,37 @@ private:
     /// either side, and splits the event lists, keeping them sorted.
     void divide(const NodeEvents& events, const Split& s, NodeEvents& left, NodeEvents& right, size_t& leftCount,
                 size_t& rightCount) {
+        // The thread's scratch, per item; held only within this call (no task runs in between).
+        Scratch& scratch = scratch_.local();
+        if (scratch.side.empty()) {
+            scratch.side.resize(table_.size());
+            scratch.boxes.resize(table_.size());
+        }
+        std::vector<uint8_t>& side = scratch.side;
+        std::vector<Bounds3f>& boxes = scratch.boxes;
         for (const Event& e : events.axis[0])
-            if (e.type != kEnd) side_[e.item] = kBoth;
+            if (e.type != kEnd) side[e.item] = kBoth;
         for (const Event& e : events.axis[s.axis]) {
-            if (e.type == kEnd && e.pos <= s.pos) side_[e.item] = kLeftOnly;
-            else if (e.type == kStart && e.pos >= s.pos) side_[e.item] = kRightOnly;
+            if (e.type == kEnd && e.pos <= s.pos) side[e.item] = kLeftOnly;
+            else if (e.type == kStart && e.pos >= s.pos) side[e.item] = kRightOnly;
             else if (e.type == kPlanar)
-                side_[e.item] = e.pos < s.pos || (e.pos == s.pos && s.planarLeft) ? kLeftOnly : kRightOnly;
+                side[e.item] = e.pos < s.pos || (e.pos == s.pos && s.planarLeft) ? kLeftOnly : kRightOnly;
         }
         // The boxes (within this node) of the items across the plane, from their events.
         for (int a = 0; a < 3; ++a)
             for (const Event& e : events.axis[a]) {
-                if (side_[e.item] != kBoth) continue;
-                if (e.type != kEnd) boxes_[e.item].lower[a] = e.pos;
-                if (e.type != kStart) boxes_[e.item].upper[a] = e.pos;
+                if (side[e.item] != kBoth) continue;
+                if (e.type != kEnd) boxes[e.item].lower[a] = e.pos;
+                if (e.type != kStart) boxes[e.item].upper[a] = e.pos;
             }
         NodeEvents newLeft, newRight;
         for (const Event& e : events.axis[0]) {
             if (e.type == kEnd) continue;
-            if (side_[e.item] == kLeftOnly) ++leftCount;
-            if (side_[e.item] == kRightOnly) ++rightCount;
-            if (side_[e.item] != kBoth) continue;
+            if (side[e.item] == kLeftOnly) ++leftCount;
+            if (side[e.item] == kRightOnly) ++rightCount;
+            if (side[e.item] != kBoth) continue;
             Bounds3f l, r;
-            clip(e.item, boxes_[e.item], s, l, r);
+            clip(e.item, boxes[e.item], s, l, r);
             if (!l.empty()) {
                 addEvents(newLeft, l, e.item);
                 ++leftCount;
@@ -162,8 +199,8 @@ private:
             std::sort(newRight.axis[a].begin(), newRight.axis[a].end());
             Events onlyLeft, onlyRight;
             for (const Event& e : events.axis[a]) {
-                if (side_[e.item] == kLeftOnly) onlyLeft.push_back(e);
-                else if (side_[e.item] == kRightOnly) onlyRight.push_back(e);
+                if (side[e.item] == kLeftOnly) onlyLeft.push_back(e);
+                else if (side[e.item] == kRightOnly) onlyRight.push_back(e);
             }
             left.axis[a].resize(onlyLeft.size() + newLeft.axis[a].size());
             std::merge(onlyLeft.begin(), onlyLeft.end(), newLeft.axis[a].begin(), newLeft.axis[a].end(), left.axis[a].begin());
@@ -191,23 +228,27 @@ private:
         }
     }
 
-    void leaf(const NodeEvents& events, size_t count) {
+    static void leaf(const NodeEvents& events, size_t count, KdTree& out) {
         KdNode node;
-        node.payload = uint32_t(out_.items.size());
+        node.payload = uint32_t(out.items.size());
         node.bits = (uint32_t(count) << 2) | KdNode::kLeafAxis;
         for (const Event& e : events.axis[0])
-            if (e.type != kEnd) out_.items.push_back(e.item);
-        out_.nodes.push_back(node);
-        ++out_.leaves;
-        out_.emptyLeaves += count == 0 ? 1 : 0;
+            if (e.type != kEnd) out.items.push_back(e.item);
+        out.nodes.push_back(node);
+        ++out.leaves;
+        out.emptyLeaves += count == 0 ? 1 : 0;
     }
+
+    /// Per item, for the node being divided: which side it goes to, its box within the node.
+    struct Scratch {
+        std::vector<uint8_t> side;
+        std::vector<Bounds3f> boxes;
+    };
 
     const PrimitiveTable& table_;
     const KdTreeConfig& config_;
-    KdTree& out_;
     int maxDepth_ = kMaxKdTreeDepth;
-    std::vector<uint8_t> side_;     ///< per item, for the node being divided
-    std::vector<Bounds3f> boxes_;  ///< per item, for the node being divided
+    tbb::enumerable_thread_specific<Scratch> scratch_;
 };
 
 } // namespace
@@ -220,7 +261,7 @@ KdTree buildKdTree(const PrimitiveTable& table, const KdTreeConfig& config) {
     for (auto& list : events.axis) list.reserve(2 * size_t(table.size()));
     for (uint32_t i = 0; i < table.size(); ++i) addEvents(events, table.box(i), i);
     for (auto& list : events.axis) tbb::parallel_sort(list.begin(), list.end());
-    KdBuilder(table, config, out).build(events, out.bounds, table.size(), 0);
+    KdBuilder(table, config).build(events, out.bounds, table.size(), 0, out);
     return out;
 }
 
