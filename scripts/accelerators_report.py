@@ -10,7 +10,7 @@ Python 3 standard library only.
 import argparse
 import statistics
 
-from performance_report import commands_section, load, machine_section, md_table, mrays, write
+from performance_report import load, machine_section, md_table, mrays, wrap_command, write
 
 KINDS = ("primary", "shadow", "diffuse")
 # (label, accel, kernel): the wide BVHs with their SIMD single-ray kernel and their plain-loop
@@ -115,15 +115,22 @@ def claims_section(results, builds, scenes):
             ", ".join("%s %d" % (l, n) for n, l in wins if n)))
     lines.append(
         "- **Grids are fast to build, middle fast to traverse, and need hierarchy.** The uniform grid builds in "
-        "%.2fx the binary BVH's time (median); among the %d scalar structures it ranks %s (1 = fastest) over "
-        "the cells; the better of the hierarchical and recursive grids traces %.2fx as many rays as the uniform "
-        "grid (median; %.2fx at best)." % (med(grid_build), len(SCALAR), "/".join(str(r) for r in grid_rank),
+        "%.2fx the binary BVH's time (median); among the %d scalar structures its rank (1 = fastest) is %s over "
+        "the %d cells (median; best %d); the better of the hierarchical and recursive grids traces %.2fx as many rays as the uniform "
+        "grid (median; %.2fx at best)." % (med(grid_build), len(SCALAR), "%g" % med(grid_rank), len(grid_rank), min(grid_rank, default=0),
                                           med(hier), max(hier, default=0)))
     lines.append(
         "- **Skip-pointer trees suit single-threaded code but cannot visit children in any order.** Against the "
         "binary BVH with its stack, the stackless skip tree traces %s (median over the scenes)." % ", ".join(
             "%.2fx on %s rays" % (med(v), k) for k, v in skip.items()))
     return "\n".join(lines)
+
+
+def commands_section(commands):
+    body = "\n".join(wrap_command(c) for c in commands)
+    return ("## Commands\n\n`make bench-accelerators` (the last step of `make bench`) ran this from the repository "
+            "root after a Release build; `scripts/accelerators_report.py` wrote this file from its JSON. Mrays/s are "
+            "medians of the runs after a warm-up, on every thread of the machine.\n\n```sh\n%s\n```" % body)
 
 
 def main():

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
@@ -134,7 +135,8 @@ private:
                 if (b.upper[a] + margin[a] < g.lower[a] || b.lower[a] - margin[a] > g.upper[a]) return;
             glm::ivec3 lo, hi;
             cellRange(b, lo, hi);
-            const bool triangle = table_.isTriangle(item);
+            // A triangle whose box lies in one cell touches it; only a box across cells needs the test.
+            const bool triangle = table_.isTriangle(item) && lo != hi;
             const TriangleVertices* t = triangle ? &table_.vertices(item) : nullptr;
             for (int z = lo.z; z <= hi.z; ++z)
                 for (int y = lo.y; y <= hi.y; ++y)
@@ -153,22 +155,15 @@ private:
                         visit(uint32_t((z * g.res[1] + y) * g.res[0] + x));
                     }
         };
-        std::vector<uint32_t> offsets(items.size() + 1, 0);
+        // One pass of overlap tests, into each thread's list; the sort makes the order deterministic.
+        tbb::enumerable_thread_specific<std::vector<CellItem>> found;
         tbb::parallel_for(tbb::blocked_range<size_t>(0, items.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i != r.end(); ++i) {
-                uint32_t n = 0;
-                forEachCell(items[i], [&](uint32_t) { ++n; });
-                offsets[i + 1] = n;
-            }
+            std::vector<CellItem>& out = found.local();
+            for (size_t i = r.begin(); i != r.end(); ++i)
+                forEachCell(items[i], [&](uint32_t cell) { out.push_back({cell, items[i]}); });
         });
-        for (size_t i = 0; i < items.size(); ++i) offsets[i + 1] += offsets[i];
-        std::vector<CellItem> pairs(offsets.back());
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, items.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i != r.end(); ++i) {
-                uint32_t k = offsets[i];
-                forEachCell(items[i], [&](uint32_t cell) { pairs[k++] = {cell, items[i]}; });
-            }
-        });
+        std::vector<CellItem> pairs;
+        for (const std::vector<CellItem>& part : found) pairs.insert(pairs.end(), part.begin(), part.end());
         tbb::parallel_sort(pairs.begin(), pairs.end());
         return pairs;
     }

@@ -1,4 +1,4 @@
-// wideray info: the shape and cost of the wide BVHs of a scene or mesh, and the ISA in use.
+// wideray info: the shape, memory and build time of a scene's acceleration structures, and the ISA in use.
 #include <exception>
 
 #include <fmt/core.h>
@@ -14,8 +14,9 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
     auto files = std::make_shared<std::vector<std::string>>();
     auto isa = std::make_shared<std::string>("auto");
     auto quality = std::make_shared<std::string>("fast");
-    CLI::App* cmd = app.add_subcommand("info", "Print triangles, BVH shape, SAH cost, memory and build time of "
-                                               "scenes or meshes, and the detected and chosen ISA");
+    CLI::App* cmd = app.add_subcommand("info", "Print triangles, the shape, memory and build time of each "
+                                               "acceleration structure (--accel; BVH SAH cost) of scenes or meshes, and "
+                                               "the detected and chosen ISA");
     cmd->add_option("files", *files, "Scene files or meshes")->required();
     cmd->add_option("--isa", *isa, "The ISA to report as chosen: sse42, avx2, avx512 or auto")
         ->check(CLI::IsMember({"sse42", "avx2", "avx512", "auto"}))
