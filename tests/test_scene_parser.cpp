@@ -353,7 +353,7 @@ TEST(SceneParserErrors, WrongTypeForNumber) {
 TEST(SceneParserErrors, NonIntegerImageSize) { expectError(sceneWith(R"("image": {"width": 64.5})"), "image.width", "expected an integer"); }
 
 TEST(SceneParserErrors, UnknownObjectType) {
-    expectError(sceneOfObjects(R"([{"type": "cone"}])"), "objects[0].type", "unknown object type \"cone\"");
+    expectError(sceneOfObjects(R"([{"type": "pyramid"}])"), "objects[0].type", "unknown object type \"pyramid\"");
 }
 
 TEST(SceneParserErrors, UnknownLightType) {

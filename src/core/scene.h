@@ -3,6 +3,7 @@
 // Meshes are stored once and placed by instances; geometry/scene_geometry.h builds the geometry
 // that renderers and acceleration structures use from it.
 #include <cstdint>
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -76,6 +77,21 @@ struct Sphere {
     uint32_t material = 0;
 };
 
+/// The analytic primitives, each in its canonical object space (docs/scene-format.md) and placed by
+/// an affine transform: quadrics (the ends at y = -1 and 1 closed by caps where `capped`), the general
+/// quadric by its coefficients within [-1, 1]^3, and the torus around the y axis.
+enum class AnalyticShape : uint8_t { Ellipsoid, Cylinder, Cone, Paraboloid, Hyperboloid, TwoSheetHyperboloid, Quadric, Torus };
+
+struct AnalyticObject {
+    AnalyticShape shape = AnalyticShape::Ellipsoid;
+    glm::mat4 transform{1.0f};  ///< object to world, affine and invertible
+    /// Quadric: A..J of A x^2 + B y^2 + C z^2 + D xy + E xz + F yz + G x + H y + I z + J = 0.
+    std::array<float, 10> coefficients{};
+    float majorRadius = 1.0f, minorRadius = 0.25f;  ///< torus
+    bool capped = true;
+    uint32_t material = 0;
+};
+
 /// A homogeneous medium filling the box around the scene's objects and lights: light over a distance
 /// d keeps exp(-density d) of itself, and the fog scatters the lights' light towards the viewer.
 struct Fog {
@@ -106,6 +122,7 @@ struct Scene {
     std::vector<TriangleMesh> meshes; ///< each mesh file once; faceMaterial indexes `materials`
     std::vector<MeshInstance> instances;
     std::vector<Sphere> spheres;
+    std::vector<AnalyticObject> analytics;
 };
 
 } // namespace wideray

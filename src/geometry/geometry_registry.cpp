@@ -1,5 +1,6 @@
 #include "geometry/geometry_registry.h"
 
+#include "geometry/analytic_geometry.h"
 #include "geometry/sphere_geometry.h"
 #include "geometry/triangle_geometry.h"
 
@@ -13,9 +14,15 @@ std::unique_ptr<Geometry> makeSpheres(const Scene& scene) {
     return std::make_unique<SphereGeometry>(scene.spheres);
 }
 
+std::unique_ptr<Geometry> makeAnalytics(const Scene& scene) {
+    if (scene.analytics.empty()) return nullptr;
+    return std::make_unique<AnalyticGeometry>(scene.analytics);
+}
+
 constexpr GeometryKind kKinds[] = {
     {"triangles", &makeTriangles},
     {"spheres", &makeSpheres},
+    {"analytic", &makeAnalytics},
 };
 
 } // namespace

@@ -543,6 +543,10 @@ private:
             {"mesh", &SceneReader::readMeshObject},           {"instance", &SceneReader::readInstanceObject},
             {"generated", &SceneReader::readGeneratedObject}, {"triangles", &SceneReader::readTrianglesObject},
             {"sphere", &SceneReader::readSphereObject},
+            {"ellipsoid", &SceneReader::readAnalyticObject}, {"cylinder", &SceneReader::readAnalyticObject},
+            {"cone", &SceneReader::readAnalyticObject}, {"paraboloid", &SceneReader::readAnalyticObject},
+            {"hyperboloid", &SceneReader::readAnalyticObject}, {"quadric", &SceneReader::readAnalyticObject},
+            {"torus", &SceneReader::readAnalyticObject},
         };
         return kTypes;
     }
@@ -601,6 +605,60 @@ private:
         require(n, "center");
         require(n, "radius");
         scene_.spheres.push_back(sphere(n));
+    }
+
+    /// An analytic primitive: its canonical shape sized by its own keys, then placed by its transform.
+    void readAnalyticObject(const Node& n) {
+        const std::string type = string(n["type"]);
+        AnalyticObject o;
+        for (const auto& [name, shape] : kAnalyticShapes)
+            if (name == type) o.shape = shape;
+        glm::mat4 local(1.0f);
+        switch (o.shape) {
+        case AnalyticShape::Ellipsoid:
+            checkKeys(n, {"type", "center", "radii", "material", "transform"});
+            if (n.has("radii")) {
+                const glm::vec3 radii = vec3(n["radii"]);
+                if (!(radii.x > 0 && radii.y > 0 && radii.z > 0)) fail(n["radii"].path, "radii must be positive");
+                local = glm::scale(local, radii);
+            }
+            if (n.has("center")) local = glm::translate(glm::mat4(1.0f), vec3(n["center"])) * local;
+            break;
+        case AnalyticShape::Quadric: {
+            checkKeys(n, {"type", "coefficients", "material", "transform"});
+            require(n, "coefficients");
+            const Node c = n["coefficients"];
+            if (!c.value.is_array() || c.value.size() != 10)
+                fail(c.path, "expected an array of 10 numbers (A..J of Ax2 + By2 + Cz2 + Dxy + Exz + Fyz + Gx + Hy + Iz + J), got " + describe(c.value));
+            bool zero = true;
+            for (size_t i = 0; i < 10; ++i) zero &= (o.coefficients[i] = number(c[i])) == 0.0f;
+            if (zero) fail(c.path, "the coefficients must not all be zero");
+            break;
+        }
+        case AnalyticShape::Torus: {
+            checkKeys(n, {"type", "major_radius", "minor_radius", "material", "transform"});
+            if (n.has("major_radius")) o.majorRadius = positive(n["major_radius"]);
+            if (n.has("minor_radius")) o.minorRadius = positive(n["minor_radius"]);
+            if (o.minorRadius >= o.majorRadius) fail(n.path, "minor_radius must be smaller than major_radius");
+            break;
+        }
+        default: {
+            std::vector<std::string> keys = {"type", "radius", "height", "capped", "material", "transform"};
+            if (o.shape == AnalyticShape::Hyperboloid) keys.push_back("sheets");
+            checkKeys(n, keys);
+            const float radius = n.has("radius") ? positive(n["radius"]) : 1.0f;
+            const float height = n.has("height") ? positive(n["height"]) : 2.0f;
+            local = glm::scale(local, glm::vec3(radius, 0.5f * height, radius));
+            if (n.has("capped")) o.capped = boolean(n["capped"]);
+            if (n.has("sheets")) {
+                const int sheets = integer(n["sheets"], 1, 2);
+                if (sheets == 2) o.shape = AnalyticShape::TwoSheetHyperboloid;
+            }
+        }
+        }
+        o.transform = optionalTransform(n) * local;
+        o.material = n.has("material") ? materialNamed(n["material"]) : defaultMaterial();
+        scene_.analytics.push_back(o);
     }
 
     void addInstance(uint32_t mesh, const Node& n) {

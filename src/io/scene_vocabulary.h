@@ -13,6 +13,12 @@ namespace wideray {
 inline const std::vector<std::string> kShapes = {"cube", "icosphere", "torus", "quad"};
 inline const std::vector<std::pair<std::string, Integrator>> kIntegrators = {{"whitted", Integrator::Whitted},
                                                                              {"path", Integrator::Path}};
+/// Object types of the analytic primitives (a hyperboloid of two sheets is "hyperboloid" with "sheets": 2).
+inline const std::vector<std::pair<std::string, AnalyticShape>> kAnalyticShapes = {
+    {"ellipsoid", AnalyticShape::Ellipsoid}, {"cylinder", AnalyticShape::Cylinder},
+    {"cone", AnalyticShape::Cone},           {"paraboloid", AnalyticShape::Paraboloid},
+    {"hyperboloid", AnalyticShape::Hyperboloid}, {"quadric", AnalyticShape::Quadric},
+    {"torus", AnalyticShape::Torus}};
 inline const std::vector<std::string> kMaterialTypes = {"diffuse", "plastic", "mirror", "conductor", "dielectric"};
 inline const std::vector<std::pair<std::string, TextureType>> kTextureTypes = {
     {"checker", TextureType::Checker}, {"noise", TextureType::Noise},   {"fbm", TextureType::Fbm},

@@ -123,6 +123,21 @@ std::string writeScene(const Scene& scene) {
     for (const Sphere& s : scene.spheres)
         objects.push_back({{"type", "sphere"}, {"center", array(s.center)}, {"radius", s.radius},
                            {"material", scene.materials.at(s.material).name}});
+    for (const AnalyticObject& a : scene.analytics) {
+        const bool twoSheets = a.shape == AnalyticShape::TwoSheetHyperboloid;
+        Json object = {{"type", nameOf(kAnalyticShapes, twoSheets ? AnalyticShape::Hyperboloid : a.shape)},
+                       {"transform", {{"matrix", matrixJson(a.transform)}}},
+                       {"material", scene.materials.at(a.material).name}};
+        if (twoSheets) object["sheets"] = 2;
+        if (a.shape == AnalyticShape::Quadric) object["coefficients"] = a.coefficients;
+        if (a.shape == AnalyticShape::Torus) {
+            object["major_radius"] = a.majorRadius;
+            object["minor_radius"] = a.minorRadius;
+        }
+        const bool hasCaps = a.shape != AnalyticShape::Ellipsoid && a.shape != AnalyticShape::Quadric && a.shape != AnalyticShape::Torus;
+        if (hasCaps && !a.capped) object["capped"] = false;
+        objects.push_back(std::move(object));
+    }
     return root.dump(2) + "\n";
 }
 

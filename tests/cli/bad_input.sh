@@ -37,7 +37,7 @@ expect_error malformed "line 2"
 printf '{"objects": [%s], %s, "camra": {}}' "$good_object" "$light" > "$work/unknown_key.json"
 expect_error unknown_key "camra"
 
-printf '{"objects": [{"type": "cone"}], %s}' "$light" > "$work/unknown_type.json"
+printf '{"objects": [{"type": "pyramid"}], %s}' "$light" > "$work/unknown_type.json"
 expect_error unknown_type "objects\[0\]"
 
 printf '{"objects": [{"type": "mesh", "file": "nowhere.ply"}], %s}' "$light" > "$work/missing_mesh.json"

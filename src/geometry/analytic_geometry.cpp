@@ -1,0 +1,204 @@
+#include "geometry/analytic_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/polynomial_roots.h"
+
+namespace wideray {
+
+double AnalyticGeometry::Quadric::at(const glm::dvec3& p) const {
+    return a * p.x * p.x + b * p.y * p.y + c * p.z * p.z + d * p.x * p.y + e * p.x * p.z + f * p.y * p.z + g * p.x +
+           h * p.y + i * p.z + j;
+}
+
+glm::dvec3 AnalyticGeometry::Quadric::gradient(const glm::dvec3& p) const {
+    return {2 * a * p.x + d * p.y + e * p.z + g, 2 * b * p.y + d * p.x + f * p.z + h, 2 * c * p.z + e * p.x + f * p.y + i};
+}
+
+namespace {
+
+using Quadric = AnalyticGeometry::Quadric;
+
+/// The canonical quadrics, negative inside: within -1 <= y <= 1, of radius 1 at their capped ends.
+Quadric canonicalQuadric(const AnalyticObject& o) {
+    switch (o.shape) {
+    case AnalyticShape::Ellipsoid: return {1, 1, 1, 0, 0, 0, 0, 0, 0, -1};
+    case AnalyticShape::Cylinder: return {1, 0, 1, 0, 0, 0, 0, 0, 0, -1};
+    case AnalyticShape::Cone: return {1, -0.25, 1, 0, 0, 0, 0, 0.5, 0, -0.25};            // apex at y = 1
+    case AnalyticShape::Paraboloid: return {1, 0, 1, 0, 0, 0, 0, -0.5, 0, -0.5};          // vertex at y = -1
+    case AnalyticShape::Hyperboloid: return {1, -0.5, 1, 0, 0, 0, 0, 0, 0, -0.5};         // waist 1/sqrt(2)
+    case AnalyticShape::TwoSheetHyperboloid: return {0.75, -1, 0.75, 0, 0, 0, 0, 0, 0, 0.25};  // vertices at y = +-1/2
+    case AnalyticShape::Quadric: {
+        const auto& k = o.coefficients;
+        return {k[0], k[1], k[2], k[3], k[4], k[5], k[6], k[7], k[8], k[9]};
+    }
+    case AnalyticShape::Torus: break;
+    }
+    return {};
+}
+
+/// The ray's interval through the box [lower, upper]; false when it misses.
+bool slab(const glm::dvec3& lower, const glm::dvec3& upper, const glm::dvec3& o, const glm::dvec3& d, double& t0,
+          double& t1) {
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0) {
+            if (o[a] < lower[a] || o[a] > upper[a]) return false;
+            continue;
+        }
+        double n = (lower[a] - o[a]) / d[a], f = (upper[a] - o[a]) / d[a];
+        if (n > f) std::swap(n, f);
+        t0 = std::max(t0, n);
+        t1 = std::min(t1, f);
+    }
+    return t0 <= t1;
+}
+
+} // namespace
+
+AnalyticGeometry::AnalyticGeometry(const std::vector<AnalyticObject>& objects) {
+    for (const AnalyticObject& model : objects) {
+        Object o;
+        o.model = model;
+        const glm::dmat4 toWorld(model.transform);
+        o.worldToObject = glm::inverse(toWorld);
+        o.normalToWorld = glm::transpose(glm::dmat3(o.worldToObject));
+        if (model.shape == AnalyticShape::Torus) {
+            const double extent = double(model.majorRadius) + double(model.minorRadius);
+            o.lower = {-extent, -model.minorRadius, -extent};
+            o.upper = {extent, model.minorRadius, extent};
+        } else {
+            o.quadric = canonicalQuadric(model);
+            o.lower = glm::dvec3(-1.0);
+            o.upper = glm::dvec3(1.0);
+        }
+        // The world box of the object-space box's corners (exact for an affine transform), grown by
+        // a little for the rounding of the float box.
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::dvec3 p((corner & 1) ? o.upper.x : o.lower.x, (corner & 2) ? o.upper.y : o.lower.y,
+                               (corner & 4) ? o.upper.z : o.lower.z);
+            o.worldBounds.grow(glm::vec3(toWorld * glm::dvec4(p, 1.0)));
+        }
+        const glm::vec3 pad = 1e-6f * (glm::abs(o.worldBounds.lower) + glm::abs(o.worldBounds.upper)) + 1e-30f;
+        o.worldBounds.lower -= pad;
+        o.worldBounds.upper += pad;
+        objects_.push_back(o);
+    }
+}
+
+bool AnalyticGeometry::intersectObject(const Object& object, const glm::dvec3& o, const glm::dvec3& d, double tnear,
+                                       double tfar, double& tHit, int& part) const {
+    double t0 = tnear, t1 = tfar;
+    if (!slab(object.lower, object.upper, o, d, t0, t1)) return false;
+    // Solved from the entry point, where the polynomial's terms are of the size of the object.
+    const double ts = t0;
+    const glm::dvec3 os = o + ts * d;
+    bool found = false;
+    auto take = [&](double t, int p) {
+        if (t >= tnear && t <= tfar && (!found || t < tHit)) {
+            tHit = t;
+            part = p;
+            found = true;
+        }
+    };
+    double roots[8];
+    if (object.model.shape == AnalyticShape::Torus) {
+        const double R = object.model.majorRadius, r = object.model.minorRadius, R2 = R * R;
+        const double length = glm::length(d);
+        const glm::dvec3 n = d / length;  // unit direction: s is a distance
+        const double e = glm::dot(os, n), f = glm::dot(os, os) + R2 - r * r;
+        const double c[5] = {f * f - 4 * R2 * (os.x * os.x + os.z * os.z),
+                             4 * e * f - 8 * R2 * (os.x * n.x + os.z * n.z),
+                             4 * e * e + 2 * f - 4 * R2 * (n.x * n.x + n.z * n.z), 4 * e, 1.0};
+        const int count = polynomialRoots(c, 4, 0.0, (t1 - ts) * length, roots);
+        for (int k = 0; k < count; ++k) {
+            // Refined on the torus' own equation, which has no expanded terms to cancel.
+            double s = roots[k];
+            for (int step = 0; step < 2; ++step) {
+                const glm::dvec3 p = os + s * n;
+                const double q = glm::dot(p, p) + R2 - r * r;
+                const double g = q * q - 4 * R2 * (p.x * p.x + p.z * p.z);
+                const double dg = 4 * q * glm::dot(p, n) - 8 * R2 * (p.x * n.x + p.z * n.z);
+                if (dg == 0.0) break;
+                const double next = s - g / dg;
+                if (std::fabs(next - roots[k]) > 1e-6 * (r + std::fabs(roots[k]))) break;  // stay with this root
+                s = next;
+            }
+            take(ts + s / length, 0);
+        }
+        return found;
+    }
+    const Quadric& q = object.quadric;
+    const double A = q.a * d.x * d.x + q.b * d.y * d.y + q.c * d.z * d.z + q.d * d.x * d.y + q.e * d.x * d.z + q.f * d.y * d.z;
+    const double B = 2 * (q.a * os.x * d.x + q.b * os.y * d.y + q.c * os.z * d.z) + q.d * (os.x * d.y + os.y * d.x) +
+                     q.e * (os.x * d.z + os.z * d.x) + q.f * (os.y * d.z + os.z * d.y) + q.g * d.x + q.h * d.y + q.i * d.z;
+    const double C = q.at(os);
+    const double c[3] = {C, B, A};
+    const int count = polynomialRoots(c, 2, 0.0, t1 - ts, roots);
+    const bool general = object.model.shape == AnalyticShape::Quadric;
+    for (int k = 0; k < count; ++k) {
+        const double t = ts + roots[k];
+        const glm::dvec3 p = o + t * d;
+        const bool inside = general ? glm::all(glm::lessThanEqual(glm::abs(p), glm::dvec3(1.0))) : std::fabs(p.y) <= 1.0;
+        if (inside) take(t, 0);
+    }
+    if (object.model.capped && !general && d.y != 0.0) {
+        for (int end = 0; end < 2; ++end) {
+            const double y = end == 0 ? -1.0 : 1.0;
+            const double t = (y - o.y) / d.y;
+            glm::dvec3 p = o + t * d;
+            p.y = y;
+            if (q.at(p) <= 0.0) take(t, 1 + end);
+        }
+    }
+    return found;
+}
+
+bool AnalyticGeometry::intersect(const Ray& ray, uint32_t primId, float tfar, float& t, float& u, float& v) const {
+    const Object& object = objects_[primId];
+    const glm::dvec3 o(object.worldToObject * glm::dvec4(ray.ox, ray.oy, ray.oz, 1.0));
+    const glm::dvec3 d(glm::dmat3(object.worldToObject) * glm::dvec3(ray.dx, ray.dy, ray.dz));
+    double tHit;
+    int part;
+    if (!intersectObject(object, o, d, ray.tnear, tfar, tHit, part)) return false;
+    t = float(tHit);
+    if (!(t >= ray.tnear && t <= tfar)) return false;
+    u = float(part);
+    v = 0.0f;
+    return true;
+}
+
+SurfacePoint AnalyticGeometry::surface(const Ray& ray, const Hit& hit) const {
+    const Object& object = objects_[hit.primId];
+    const glm::dvec3 o(object.worldToObject * glm::dvec4(ray.ox, ray.oy, ray.oz, 1.0));
+    const glm::dvec3 d(glm::dmat3(object.worldToObject) * glm::dvec3(ray.dx, ray.dy, ray.dz));
+    glm::dvec3 p = o + double(hit.t) * d;
+    const int part = int(hit.u);
+    glm::dvec3 normal;
+    glm::vec2 uv;
+    constexpr double kTwoPi = 6.283185307179586;
+    if (object.model.shape == AnalyticShape::Torus) {
+        const double R = object.model.majorRadius, r = object.model.minorRadius;
+        const double q = glm::dot(p, p) + R * R - r * r;
+        normal = 4.0 * q * p - 8.0 * R * R * glm::dvec3(p.x, 0.0, p.z);
+        const double ring = std::sqrt(p.x * p.x + p.z * p.z) - R;
+        uv = {float(std::atan2(p.z, p.x) / kTwoPi + 0.5), float(std::atan2(p.y, ring) / kTwoPi + 0.5)};
+    } else if (part == 0) {
+        normal = object.quadric.gradient(p);
+        uv = {float(std::atan2(p.z, p.x) / kTwoPi + 0.5), float(0.5 * (p.y + 1.0))};
+    } else {
+        p.y = part == 1 ? -1.0 : 1.0;
+        normal = {0.0, p.y, 0.0};
+        uv = {float(0.5 * (p.x + 1.0)), float(0.5 * (p.z + 1.0))};
+    }
+    const glm::dvec3 n = object.normalToWorld * normal;
+    const double length = glm::length(n);
+    SurfacePoint sp;
+    sp.position = glm::vec3(glm::dmat4(object.model.transform) * glm::dvec4(p, 1.0));
+    sp.geometricNormal = sp.shadingNormal = length > 0 ? glm::vec3(n / length) : glm::vec3(0, 1, 0);
+    sp.uv = uv;
+    sp.material = object.model.material;
+    return sp;
+}
+
+} // namespace wideray
