@@ -123,7 +123,8 @@ private:
         auto cellRange = [&](const Bounds3f& b, glm::ivec3& lo, glm::ivec3& hi) {
             for (int a = 0; a < 3; ++a) {
                 const auto index = [&](float x) {
-                    return int(std::clamp(std::floor(double(x - g.lower[a]) * g.invCellSize[a]), 0.0, double(g.res[a] - 1)));
+                    const double f = std::floor(double(x - g.lower[a]) * g.invCellSize[a]);
+                    return !(f >= 0.0) ? 0 : (f >= double(g.res[a]) ? g.res[a] - 1 : int(f));
                 };
                 lo[a] = index(b.lower[a] - margin[a]);
                 hi[a] = index(b.upper[a] + margin[a]);

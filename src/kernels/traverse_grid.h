@@ -34,8 +34,8 @@ inline bool walkGrid(const GridView& grid, uint32_t level, const GridRay& r, flo
         // The cell of the entry point; rounding may put it one cell off near a boundary, which the
         // builder's margin around every cell covers.
         const float p = r.origin[a] + t0 * r.dir[a];
-        int c = int(std::floor((p - g.lower[a]) * g.invCellSize[a]));
-        c = c < 0 ? 0 : (c >= g.res[a] ? g.res[a] - 1 : c);
+        const float f = std::floor((p - g.lower[a]) * g.invCellSize[a]);
+        const int c = !(f >= 0.0f) ? 0 : (f >= float(g.res[a]) ? g.res[a] - 1 : int(f));  // clamped before converting
         cell[a] = c;
         if (std::signbit(r.rdir[a])) {
             step[a] = -1;
