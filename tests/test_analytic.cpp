@@ -175,6 +175,72 @@ TEST(Analytic, TorusAgainstRootSearch) {
     EXPECT_GT(hits, 300u);
 }
 
+/// A blob's field minus its threshold along a ray, in long double, and its first crossing.
+long double blobAt(const AnalyticObject& blob, const Ray& r, long double t) {
+    long double f = -blob.threshold;
+    for (const BlobBall& b : blob.balls) {
+        const long double x = r.ox + t * r.dx - b.center.x, y = r.oy + t * r.dy - b.center.y, z = r.oz + t * r.dz - b.center.z;
+        const long double u = 1.0L - (x * x + y * y + z * z) / ((long double)b.radius * b.radius);
+        if (u > 0) f += b.strength * u * u * u;
+    }
+    return f;
+}
+
+long double blobReference(const AnalyticObject& blob, const Ray& r, long double tmax) {
+    const int steps = 100000;
+    long double a = 0, fa = blobAt(blob, r, 0);
+    for (int i = 1; i <= steps; ++i) {
+        const long double b = tmax * i / steps, fb = blobAt(blob, r, b);
+        if ((fa < 0) != (fb < 0)) {
+            long double lo = a, hi = b;
+            for (int k = 0; k < 200; ++k) {
+                const long double m = 0.5L * (lo + hi);
+                if ((blobAt(blob, r, m) < 0) == (fa < 0)) lo = m;
+                else hi = m;
+            }
+            return 0.5L * (lo + hi);
+        }
+        a = b;
+        fa = fb;
+    }
+    return INFINITY;
+}
+
+TEST(Analytic, BlobsAgainstTheirField) {
+    // One ball: the surface is the sphere where (1 - r^2)^3 = threshold.
+    AnalyticObject one = object(AnalyticShape::Blob);
+    one.balls = {{{0, 0, 0}, 1.0f, 1.0f}};
+    one.threshold = 0.5f;
+    const float radius = std::sqrt(1.0f - std::cbrt(0.5f));
+    expectHit(one, ray({-5, 0, 0}, {1, 0, 0}), 5.0f - radius, {-1, 0, 0}, "one ball");
+    expectHit(one, ray({0, 0, 0}, {0, 1, 0}), radius, {0, 1, 0}, "one ball from inside");
+    // Three balls, one of them carving (negative strength): random rays against the field itself.
+    AnalyticObject blob = object(AnalyticShape::Blob);
+    blob.balls = {{{-0.5f, 0, 0}, 1.0f, 1.0f}, {{0.5f, 0.1f, 0}, 0.9f, 1.0f}, {{0, 0.6f, 0.3f}, 0.5f, -0.8f}};
+    blob.threshold = 0.3f;
+    uint32_t state = 777;
+    auto unit = [&] { state = state * 1664525u + 1013904223u; return float(state >> 8) / float(1 << 24); };
+    size_t hits = 0;
+    for (int i = 0; i < 300; ++i) {
+        const glm::vec3 o(6 * unit() - 3, 6 * unit() - 3, 6 * unit() - 3);
+        const glm::vec3 target(unit() - 0.5f, 0.6f * (unit() - 0.5f), 0.6f * (unit() - 0.5f));
+        const Ray r = ray(o, glm::normalize(target - o));
+        const long double expected = blobReference(blob, r, 8.0L);
+        const Result h = trace(blob, r);
+        if (std::isinf(double(expected))) {
+            EXPECT_EQ(h.t, kInf) << "ray " << i;
+            continue;
+        }
+        ++hits;
+        EXPECT_NEAR(double(h.t), double(expected), 1e-5 * std::max(1.0, double(expected))) << "ray " << i;
+        // The normal faces the ray's origin side where the ray enters from outside.
+        if (blobAt(blob, r, 0) < 0) {
+            EXPECT_LT(glm::dot(h.normal, glm::vec3(r.dx, r.dy, r.dz)), 0.0f) << "ray " << i;
+        }
+    }
+    EXPECT_GT(hits, 200u);
+}
+
 TEST(Analytic, PolynomialRootsOfKnownPolynomials) {
     double roots[8];
     const double quartic[5] = {24, -50, 35, -10, 1};  // (x-1)(x-2)(x-3)(x-4)
@@ -204,13 +270,16 @@ constexpr const char* kShapesScene = R"({
     {"type": "quadric", "coefficients": [1, 0, 1, 0, 0, 0, 0, -1, 0, 0], "transform": {"translate": [0, -2, 0]}},
     {"type": "torus", "major_radius": 1, "minor_radius": 0.3,
      "transform": {"rotate": {"axis": [1, 0, 0], "degrees": 70}, "translate": [2, 2, 0]}},
+    {"type": "blob", "threshold": 0.4, "balls": [{"center": [-0.4, 0, 0], "radius": 0.8},
+      {"center": [0.4, 0.2, 0], "radius": 0.7}, {"center": [0, -0.3, 0.2], "radius": 0.4, "strength": -0.5}],
+     "transform": {"translate": [-2, 2, 0]}},
     {"type": "generated", "shape": "quad", "transform": {"scale": 6, "translate": [0, -3, 0]}}
   ]
 })";
 
 TEST(Analytic, EveryBackendAndStructureFindsTheSameHits) {
     const Scene scene = parseScene(kShapesScene, "shapes.json");
-    ASSERT_EQ(scene.analytics.size(), 8u);
+    ASSERT_EQ(scene.analytics.size(), 9u);
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     std::vector<Ray> rays;
     for (int j = 0; j < 48; ++j)
@@ -260,6 +329,7 @@ TEST(Analytic, SceneKeysRoundTripAndBadValuesNameTheirKey) {
         EXPECT_EQ(second.analytics[i].capped, first.analytics[i].capped) << i;
         EXPECT_EQ(second.analytics[i].coefficients, first.analytics[i].coefficients) << i;
         EXPECT_EQ(second.analytics[i].minorRadius, first.analytics[i].minorRadius) << i;
+        EXPECT_EQ(second.analytics[i].balls.size(), first.analytics[i].balls.size()) << i;
     }
     auto error = [](const std::string& object) {
         try {
@@ -277,6 +347,9 @@ TEST(Analytic, SceneKeysRoundTripAndBadValuesNameTheirKey) {
     EXPECT_NE(error(R"({"type": "cone", "sheets": 2})").find("sheets"), std::string::npos);
     EXPECT_NE(error(R"({"type": "ellipsoid", "radii": [1, 0, 1]})").find("objects[0].radii"), std::string::npos);
     EXPECT_NE(error(R"({"type": "cylindre"})").find("cylinder"), std::string::npos);
+    EXPECT_NE(error(R"({"type": "blob", "balls": []})").find("objects[0].balls"), std::string::npos);
+    EXPECT_NE(error(R"({"type": "blob", "balls": [{"center": [0, 0, 0], "radius": 1, "strength": 0}]})").find("balls[0].strength"),
+              std::string::npos);
 }
 
 } // namespace

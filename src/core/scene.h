@@ -79,8 +79,16 @@ struct Sphere {
 
 /// The analytic primitives, each in its canonical object space (docs/scene-format.md) and placed by
 /// an affine transform: quadrics (the ends at y = -1 and 1 closed by caps where `capped`), the general
-/// quadric by its coefficients within [-1, 1]^3, and the torus around the y axis.
-enum class AnalyticShape : uint8_t { Ellipsoid, Cylinder, Cone, Paraboloid, Hyperboloid, TwoSheetHyperboloid, Quadric, Torus };
+/// quadric by its coefficients within [-1, 1]^3, the torus around the y axis, and blobs.
+enum class AnalyticShape : uint8_t { Ellipsoid, Cylinder, Cone, Paraboloid, Hyperboloid, TwoSheetHyperboloid, Quadric, Torus, Blob };
+
+/// A ball of a blob: its field strength * (1 - r^2 / radius^2)^3 within `radius` of `center`, 0
+/// beyond (Wyvill's soft objects).
+struct BlobBall {
+    glm::vec3 center{0.0f};
+    float radius = 1.0f;
+    float strength = 1.0f;  ///< negative strengths carve
+};
 
 struct AnalyticObject {
     AnalyticShape shape = AnalyticShape::Ellipsoid;
@@ -88,6 +96,8 @@ struct AnalyticObject {
     /// Quadric: A..J of A x^2 + B y^2 + C z^2 + D xy + E xz + F yz + G x + H y + I z + J = 0.
     std::array<float, 10> coefficients{};
     float majorRadius = 1.0f, minorRadius = 0.25f;  ///< torus
+    std::vector<BlobBall> balls;                      ///< blob: the surface where their field sum is `threshold`
+    float threshold = 0.5f;
     bool capped = true;
     uint32_t material = 0;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geometry/polynomial_roots.h"
 
@@ -33,9 +34,44 @@ Quadric canonicalQuadric(const AnalyticObject& o) {
         const auto& k = o.coefficients;
         return {k[0], k[1], k[2], k[3], k[4], k[5], k[6], k[7], k[8], k[9]};
     }
-    case AnalyticShape::Torus: break;
+    case AnalyticShape::Torus:
+    case AnalyticShape::Blob: break;
     }
     return {};
+}
+
+/// The blob's field minus its threshold along the ray o + t d, as a polynomial of degree 6 in t over
+/// an interval where the balls in `active` are the ones whose support the ray is in.
+void blobPolynomial(const AnalyticObject& blob, const std::vector<uint32_t>& active, const glm::dvec3& o,
+                    const glm::dvec3& d, double* c) {
+    for (int k = 0; k <= 6; ++k) c[k] = 0.0;
+    c[0] = -double(blob.threshold);
+    const double dd = glm::dot(d, d);
+    for (uint32_t i : active) {
+        const BlobBall& ball = blob.balls[i];
+        const glm::dvec3 oc = o - glm::dvec3(ball.center);
+        const double r2 = double(ball.radius) * ball.radius;
+        // u(t) = 1 - |oc + t d|^2 / r^2 = u0 + u1 t + u2 t^2; the field adds strength * u^3.
+        const double u0 = 1.0 - glm::dot(oc, oc) / r2, u1 = -2.0 * glm::dot(oc, d) / r2, u2 = -dd / r2;
+        const double square[5] = {u0 * u0, 2 * u0 * u1, u1 * u1 + 2 * u0 * u2, 2 * u1 * u2, u2 * u2};
+        const double s = ball.strength;
+        for (int k = 0; k < 5; ++k) {
+            c[k] += s * square[k] * u0;
+            c[k + 1] += s * square[k] * u1;
+            c[k + 2] += s * square[k] * u2;
+        }
+    }
+}
+
+/// The field's gradient at p (the surface normal points against it: the field falls outwards).
+glm::dvec3 blobGradient(const AnalyticObject& blob, const glm::dvec3& p) {
+    glm::dvec3 g(0.0);
+    for (const BlobBall& ball : blob.balls) {
+        const glm::dvec3 pc = p - glm::dvec3(ball.center);
+        const double r2 = double(ball.radius) * ball.radius, u = 1.0 - glm::dot(pc, pc) / r2;
+        if (u > 0.0) g += double(ball.strength) * 3.0 * u * u * (-2.0 / r2) * pc;
+    }
+    return g;
 }
 
 /// The ray's interval through the box [lower, upper]; false when it misses.
@@ -67,6 +103,13 @@ AnalyticGeometry::AnalyticGeometry(const std::vector<AnalyticObject>& objects) {
             const double extent = double(model.majorRadius) + double(model.minorRadius);
             o.lower = {-extent, -model.minorRadius, -extent};
             o.upper = {extent, model.minorRadius, extent};
+        } else if (model.shape == AnalyticShape::Blob) {
+            o.lower = glm::dvec3(std::numeric_limits<double>::infinity());
+            o.upper = -o.lower;
+            for (const BlobBall& ball : model.balls) {
+                o.lower = glm::min(o.lower, glm::dvec3(ball.center) - double(ball.radius));
+                o.upper = glm::max(o.upper, glm::dvec3(ball.center) + double(ball.radius));
+            }
         } else {
             o.quadric = canonicalQuadric(model);
             o.lower = glm::dvec3(-1.0);
@@ -102,6 +145,7 @@ bool AnalyticGeometry::intersectObject(const Object& object, const glm::dvec3& o
         }
     };
     double roots[8];
+    if (object.model.shape == AnalyticShape::Blob) return intersectBlob(object.model, o, d, t0, t1, tHit, part);
     if (object.model.shape == AnalyticShape::Torus) {
         const double R = object.model.majorRadius, r = object.model.minorRadius, R2 = R * R;
         const double length = glm::length(d);
@@ -154,6 +198,51 @@ bool AnalyticGeometry::intersectObject(const Object& object, const glm::dvec3& o
     return found;
 }
 
+bool AnalyticGeometry::intersectBlob(const AnalyticObject& blob, const glm::dvec3& o, const glm::dvec3& d, double t0,
+                                     double t1, double& tHit, int& part) {
+    // Where the ray enters and leaves each ball's support: between two such events the field is one
+    // polynomial of degree 6, whose first root in the piece is exact (bracketed by its derivatives).
+    struct Event {
+        double t;
+        uint32_t ball;
+        bool enters;
+    };
+    std::vector<Event> events;
+    const double dd = glm::dot(d, d);
+    for (uint32_t i = 0; i < blob.balls.size(); ++i) {
+        const BlobBall& ball = blob.balls[i];
+        const glm::dvec3 oc = o - glm::dvec3(ball.center);
+        const double b = glm::dot(oc, d), c = glm::dot(oc, oc) - double(ball.radius) * ball.radius;
+        const double disc = b * b - dd * c;
+        if (disc <= 0.0) continue;
+        const double root = std::sqrt(disc);
+        const double enter = (-b - root) / dd, leave = (-b + root) / dd;
+        if (leave < t0 || enter > t1) continue;
+        events.push_back({std::max(enter, t0), i, true});
+        events.push_back({std::min(leave, t1), i, false});
+    }
+    std::sort(events.begin(), events.end(), [](const Event& a, const Event& b) {
+        return a.t != b.t ? a.t < b.t : a.enters > b.enters;
+    });
+    std::vector<uint32_t> active;
+    double roots[8];
+    for (size_t k = 0; k + 1 < events.size(); ++k) {
+        const Event& e = events[k];
+        if (e.enters) active.push_back(e.ball);
+        else active.erase(std::find(active.begin(), active.end(), e.ball));
+        const double start = e.t, end = events[k + 1].t;
+        if (active.empty() || !(end > start)) continue;
+        double c[7];
+        blobPolynomial(blob, active, o + start * d, d, c);  // in t - start: terms of the blob's size
+        if (polynomialRoots(c, 6, 0.0, end - start, roots) > 0) {
+            tHit = start + roots[0];
+            part = 0;
+            return true;
+        }
+    }
+    return false;
+}
+
 bool AnalyticGeometry::intersect(const Ray& ray, uint32_t primId, float tfar, float& t, float& u, float& v) const {
     const Object& object = objects_[primId];
     const glm::dvec3 o(object.worldToObject * glm::dvec4(ray.ox, ray.oy, ray.oz, 1.0));
@@ -177,7 +266,10 @@ SurfacePoint AnalyticGeometry::surface(const Ray& ray, const Hit& hit) const {
     glm::dvec3 normal;
     glm::vec2 uv;
     constexpr double kTwoPi = 6.283185307179586;
-    if (object.model.shape == AnalyticShape::Torus) {
+    if (object.model.shape == AnalyticShape::Blob) {
+        normal = -blobGradient(object.model, p);
+        uv = {float(std::atan2(p.z, p.x) / kTwoPi + 0.5), 0.0f};
+    } else if (object.model.shape == AnalyticShape::Torus) {
         const double R = object.model.majorRadius, r = object.model.minorRadius;
         const double q = glm::dot(p, p) + R * R - r * r;
         normal = 4.0 * q * p - 8.0 * R * R * glm::dvec3(p.x, 0.0, p.z);

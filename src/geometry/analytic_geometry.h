@@ -2,8 +2,9 @@
 // The analytic primitives of the scene (core/scene.h, AnalyticObject) as user geometry: each ray is
 // taken into the primitive's object space by the inverse of its transform, intersected there with the
 // canonical surface in double precision (quadrics by their quadratic, the torus by its quartic,
-// solved robustly and refined on the torus' own equation), and its normal brought back by the
-// inverse transpose. t is the same in both spaces (the direction is transformed, not normalized).
+// solved robustly and refined on the torus' own equation, blobs by the degree-6 polynomial their
+// field is between the points where the ray enters and leaves a ball), and its normal brought back
+// by the inverse transpose. t is the same in both spaces (the direction is transformed, not normalized).
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -45,6 +46,10 @@ private:
     /// Candidate distances along the object-space ray (o, d) in [tnear, tfar], with the part hit.
     bool intersectObject(const Object& object, const glm::dvec3& o, const glm::dvec3& d, double tnear, double tfar,
                          double& t, int& part) const;
+
+    /// A blob over [t0, t1] (within its box): the first crossing of its threshold.
+    static bool intersectBlob(const AnalyticObject& blob, const glm::dvec3& o, const glm::dvec3& d, double t0, double t1,
+                              double& t, int& part);
 
     std::vector<Object> objects_;
 };

@@ -1,5 +1,5 @@
 #pragma once
-// Real roots of polynomials of degree up to 4 in an interval, robustly: the roots of the derivative
+// Real roots of polynomials of degree up to 6 in an interval, robustly: the roots of the derivative
 // split the interval into pieces where the polynomial is monotonic, and each piece with a sign change
 // is solved by Newton's method kept inside its bracket (bisection where a step would leave it). No
 // closed-form quartic formula, whose cancellations lose the roots of grazing rays.
@@ -36,7 +36,7 @@ inline double bracketedRoot(const double* c, const double* dc, int degree, doubl
 } // namespace detail
 
 /// The real roots of c[0] + ... + c[degree] x^degree in [lo, hi], ascending; returns their count
-/// (`roots` needs room for 8). A polynomial that is zero everywhere has none. Roots of even multiplicity
+/// (`roots` needs room for 8; degree <= 6). A polynomial that is zero everywhere has none. Roots of even multiplicity
 /// (the polynomial touches zero without crossing) are found only where it reaches exactly zero.
 inline int polynomialRoots(const double* c, int degree, double lo, double hi, double* roots) {
     while (degree > 0 && c[degree] == 0.0) --degree;
@@ -47,9 +47,9 @@ inline int polynomialRoots(const double* c, int degree, double lo, double hi, do
         roots[0] = x;
         return 1;
     }
-    double dc[4] = {};
+    double dc[6] = {};
     for (int i = 0; i < degree; ++i) dc[i] = double(i + 1) * c[i + 1];
-    double ends[8];
+    double ends[9];
     int n = 0;
     ends[n++] = lo;
     n += polynomialRoots(dc, degree - 1, lo, hi, ends + 1);

@@ -546,7 +546,7 @@ private:
             {"ellipsoid", &SceneReader::readAnalyticObject}, {"cylinder", &SceneReader::readAnalyticObject},
             {"cone", &SceneReader::readAnalyticObject}, {"paraboloid", &SceneReader::readAnalyticObject},
             {"hyperboloid", &SceneReader::readAnalyticObject}, {"quadric", &SceneReader::readAnalyticObject},
-            {"torus", &SceneReader::readAnalyticObject},
+            {"torus", &SceneReader::readAnalyticObject}, {"blob", &SceneReader::readAnalyticObject},
         };
         return kTypes;
     }
@@ -633,6 +633,28 @@ private:
             bool zero = true;
             for (size_t i = 0; i < 10; ++i) zero &= (o.coefficients[i] = number(c[i])) == 0.0f;
             if (zero) fail(c.path, "the coefficients must not all be zero");
+            break;
+        }
+        case AnalyticShape::Blob: {
+            checkKeys(n, {"type", "balls", "threshold", "material", "transform"});
+            require(n, "balls");
+            const Node balls = n["balls"];
+            expectArray(balls);
+            if (balls.value.empty()) fail(balls.path, "a blob needs at least one ball");
+            for (size_t i = 0; i < balls.value.size(); ++i) {
+                const Node b = balls[i];
+                expectObject(b);
+                checkKeys(b, {"center", "radius", "strength"});
+                require(b, "center");
+                require(b, "radius");
+                BlobBall ball{vec3(b["center"]), positive(b["radius"]), 1.0f};
+                if (b.has("strength")) {
+                    ball.strength = number(b["strength"]);
+                    if (ball.strength == 0.0f) fail(b["strength"].path, "strength must not be zero");
+                }
+                o.balls.push_back(ball);
+            }
+            if (n.has("threshold")) o.threshold = positive(n["threshold"]);
             break;
         }
         case AnalyticShape::Torus: {

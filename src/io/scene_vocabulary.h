@@ -18,7 +18,7 @@ inline const std::vector<std::pair<std::string, AnalyticShape>> kAnalyticShapes 
     {"ellipsoid", AnalyticShape::Ellipsoid}, {"cylinder", AnalyticShape::Cylinder},
     {"cone", AnalyticShape::Cone},           {"paraboloid", AnalyticShape::Paraboloid},
     {"hyperboloid", AnalyticShape::Hyperboloid}, {"quadric", AnalyticShape::Quadric},
-    {"torus", AnalyticShape::Torus}};
+    {"torus", AnalyticShape::Torus}, {"blob", AnalyticShape::Blob}};
 inline const std::vector<std::string> kMaterialTypes = {"diffuse", "plastic", "mirror", "conductor", "dielectric"};
 inline const std::vector<std::pair<std::string, TextureType>> kTextureTypes = {
     {"checker", TextureType::Checker}, {"noise", TextureType::Noise},   {"fbm", TextureType::Fbm},

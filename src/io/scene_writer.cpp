@@ -130,11 +130,18 @@ std::string writeScene(const Scene& scene) {
                        {"material", scene.materials.at(a.material).name}};
         if (twoSheets) object["sheets"] = 2;
         if (a.shape == AnalyticShape::Quadric) object["coefficients"] = a.coefficients;
+        if (a.shape == AnalyticShape::Blob) {
+            object["threshold"] = a.threshold;
+            Json& balls = object["balls"] = Json::array();
+            for (const BlobBall& b : a.balls)
+                balls.push_back({{"center", array(b.center)}, {"radius", b.radius}, {"strength", b.strength}});
+        }
         if (a.shape == AnalyticShape::Torus) {
             object["major_radius"] = a.majorRadius;
             object["minor_radius"] = a.minorRadius;
         }
-        const bool hasCaps = a.shape != AnalyticShape::Ellipsoid && a.shape != AnalyticShape::Quadric && a.shape != AnalyticShape::Torus;
+        const bool hasCaps = a.shape != AnalyticShape::Ellipsoid && a.shape != AnalyticShape::Quadric &&
+                             a.shape != AnalyticShape::Torus && a.shape != AnalyticShape::Blob;
         if (hasCaps && !a.capped) object["capped"] = false;
         objects.push_back(std::move(object));
     }
