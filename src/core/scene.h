@@ -102,6 +102,29 @@ struct AnalyticObject {
     uint32_t material = 0;
 };
 
+/// Musgrave's ridged multifractal over [-1, 1]^2 (io/terrain.h): the generated shape "terrain" and
+/// the height-field primitive.
+struct TerrainParameters {
+    int resolution = 128;    ///< cells per side
+    int octaves = 6;
+    float lacunarity = 2.0f; ///< frequency ratio of successive octaves
+    float gain = 2.0f;       ///< how strongly the ridges of one octave weight the next
+    float offset = 1.0f;     ///< where the ridges lie: offset - |noise|
+    float roughness = 1.0f;  ///< H: octave i is weighted by lacunarity^(-i H)
+    float frequency = 2.0f;  ///< of the first octave, over [-1, 1]
+    float height = 0.25f;    ///< the heights are scaled to [0, height]
+    uint32_t seed = 0;       ///< moves the noise domain
+};
+
+/// A height field traced directly (geometry/heightfield_geometry.h): heights over [-1, 1]^2 in
+/// object space, placed by an affine transform.
+struct HeightField {
+    TerrainParameters terrain;
+    std::vector<float> heights;  ///< (resolution + 1)^2, x fastest
+    glm::mat4 transform{1.0f};
+    uint32_t material = 0;
+};
+
 /// A homogeneous medium filling the box around the scene's objects and lights: light over a distance
 /// d keeps exp(-density d) of itself, and the fog scatters the lights' light towards the viewer.
 struct Fog {
@@ -133,6 +156,7 @@ struct Scene {
     std::vector<MeshInstance> instances;
     std::vector<Sphere> spheres;
     std::vector<AnalyticObject> analytics;
+    std::vector<HeightField> heightFields;
 };
 
 } // namespace wideray

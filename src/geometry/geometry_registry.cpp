@@ -1,6 +1,7 @@
 #include "geometry/geometry_registry.h"
 
 #include "geometry/analytic_geometry.h"
+#include "geometry/heightfield_geometry.h"
 #include "geometry/sphere_geometry.h"
 #include "geometry/triangle_geometry.h"
 
@@ -19,10 +20,16 @@ std::unique_ptr<Geometry> makeAnalytics(const Scene& scene) {
     return std::make_unique<AnalyticGeometry>(scene.analytics);
 }
 
+std::unique_ptr<Geometry> makeHeightFields(const Scene& scene) {
+    if (scene.heightFields.empty()) return nullptr;
+    return std::make_unique<HeightFieldGeometry>(scene.heightFields);
+}
+
 constexpr GeometryKind kKinds[] = {
     {"triangles", &makeTriangles},
     {"spheres", &makeSpheres},
     {"analytic", &makeAnalytics},
+    {"heightfields", &makeHeightFields},
 };
 
 } // namespace

@@ -1,5 +1,6 @@
 // JSON -> Scene with every value checked (docs/scene-format.md).
 #include "io/scene_parser.h"
+#include "io/terrain.h"
 
 #include <algorithm>
 #include <cmath>
@@ -380,6 +381,7 @@ private:
     static std::vector<std::string> shapeKeys(const std::string& shape) {
         if (shape == "icosphere") return {"subdivisions"};
         if (shape == "torus") return {"major_radius", "minor_radius", "major_segments", "minor_segments"};
+        if (shape == "terrain") return terrainKeys();
         return {};
     }
 
@@ -392,8 +394,43 @@ private:
         return shape;
     }
 
+    /// The keys of the ridged multifractal (generated "terrain" and "heightfield" objects).
+    static std::vector<std::string> terrainKeys() {
+        return {"resolution", "octaves", "lacunarity", "gain", "offset", "roughness", "frequency", "height", "seed"};
+    }
+
+    TerrainParameters terrain(const Node& n) const {
+        TerrainParameters p;
+        if (n.has("resolution")) p.resolution = integer(n["resolution"], 1, 4096);
+        if (n.has("octaves")) p.octaves = integer(n["octaves"], 1, 16);
+        if (n.has("lacunarity")) p.lacunarity = positive(n["lacunarity"]);
+        if (n.has("gain")) p.gain = positive(n["gain"]);
+        if (n.has("offset")) p.offset = number(n["offset"]);
+        if (n.has("roughness")) p.roughness = number(n["roughness"]);
+        if (n.has("frequency")) p.frequency = positive(n["frequency"]);
+        if (n.has("height")) p.height = positive(n["height"]);
+        if (n.has("seed")) p.seed = uint32_t(integer(n["seed"], 0, 1 << 30));
+        return p;
+    }
+
+    void readHeightFieldObject(const Node& n) {
+        std::vector<std::string> keys = terrainKeys();
+        keys.insert(keys.end(), {"type", "material", "transform"});
+        checkKeys(n, keys);
+        HeightField f;
+        f.terrain = terrain(n);
+        f.heights = ridgedMultifractalHeights(f.terrain);
+        f.transform = optionalTransform(n);
+        f.material = n.has("material") ? materialNamed(n["material"]) : defaultMaterial();
+        scene_.heightFields.push_back(std::move(f));
+    }
+
     TriangleMesh generateShape(const std::string& shape, const Node& n) const {
         if (shape == "cube") return makeCube();
+        if (shape == "terrain") {
+            const TerrainParameters p = terrain(n);
+            return heightFieldMesh(ridgedMultifractalHeights(p), p.resolution);
+        }
         if (shape == "quad") return makeQuad();
         if (shape == "icosphere") return makeIcosphere(n.has("subdivisions") ? integer(n["subdivisions"], 0, 8) : 3);
         const float major = n.has("major_radius") ? positive(n["major_radius"]) : 1.0f;
@@ -547,6 +584,7 @@ private:
             {"cone", &SceneReader::readAnalyticObject}, {"paraboloid", &SceneReader::readAnalyticObject},
             {"hyperboloid", &SceneReader::readAnalyticObject}, {"quadric", &SceneReader::readAnalyticObject},
             {"torus", &SceneReader::readAnalyticObject}, {"blob", &SceneReader::readAnalyticObject},
+            {"heightfield", &SceneReader::readHeightFieldObject},
         };
         return kTypes;
     }

@@ -10,7 +10,7 @@
 
 namespace wideray {
 
-inline const std::vector<std::string> kShapes = {"cube", "icosphere", "torus", "quad"};
+inline const std::vector<std::string> kShapes = {"cube", "icosphere", "torus", "quad", "terrain"};
 inline const std::vector<std::pair<std::string, Integrator>> kIntegrators = {{"whitted", Integrator::Whitted},
                                                                              {"path", Integrator::Path}};
 /// Object types of the analytic primitives (a hyperboloid of two sheets is "hyperboloid" with "sheets": 2).

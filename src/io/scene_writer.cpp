@@ -123,6 +123,14 @@ std::string writeScene(const Scene& scene) {
     for (const Sphere& s : scene.spheres)
         objects.push_back({{"type", "sphere"}, {"center", array(s.center)}, {"radius", s.radius},
                            {"material", scene.materials.at(s.material).name}});
+    for (const HeightField& f : scene.heightFields) {
+        const TerrainParameters& t = f.terrain;
+        objects.push_back({{"type", "heightfield"}, {"resolution", t.resolution}, {"octaves", t.octaves},
+                           {"lacunarity", t.lacunarity}, {"gain", t.gain}, {"offset", t.offset}, {"roughness", t.roughness},
+                           {"frequency", t.frequency}, {"height", t.height}, {"seed", t.seed},
+                           {"transform", {{"matrix", matrixJson(f.transform)}}},
+                           {"material", scene.materials.at(f.material).name}});
+    }
     for (const AnalyticObject& a : scene.analytics) {
         const bool twoSheets = a.shape == AnalyticShape::TwoSheetHyperboloid;
         Json object = {{"type", nameOf(kAnalyticShapes, twoSheets ? AnalyticShape::Hyperboloid : a.shape)},
