@@ -419,9 +419,18 @@ TEST(SceneParserErrors, EmptyObjectList) { expectError(sceneOfObjects("[]"), "ob
 
 TEST(SceneParserErrors, NoObjectsKey) { expectError(R"({"image": {"spp": 2}})", "", "scene has no objects"); }
 
-TEST(SceneParserErrors, SphereWithNonUniformScale) {
-    expectError(sceneOfObjects(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "transform": {"scale": [1, 2, 1]}}])"),
-                "objects[0].transform", "must be a similarity");
+TEST(SceneParser, SphereWithNonUniformScaleIsAnEllipsoid) {
+    const Scene scene = parse(sceneOfObjects(
+        R"([{"type": "sphere", "center": [1, 0, 0], "radius": 2, "transform": {"scale": [1, 3, 1]}},
+            {"type": "sphere", "center": [1, 0, 0], "radius": 2, "transform": {"scale": 3}}])"));
+    ASSERT_EQ(scene.analytics.size(), 1u);
+    ASSERT_EQ(scene.spheres.size(), 1u);
+    EXPECT_EQ(scene.analytics[0].shape, AnalyticShape::Ellipsoid);
+    // The unit sphere to radius 2 at x = 1, then stretched along y: (1 +- 2, +-6, +-2).
+    const glm::vec4 top = scene.analytics[0].transform * glm::vec4(0, 1, 0, 1);
+    EXPECT_EQ(glm::vec3(top), glm::vec3(1, 6, 0));
+    EXPECT_EQ(scene.spheres[0].center, glm::vec3(3, 0, 0));
+    EXPECT_EQ(scene.spheres[0].radius, 6.0f);
 }
 
 TEST(SceneParserErrors, MatrixCombinedWithOtherKeys) {

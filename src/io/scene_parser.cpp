@@ -642,7 +642,29 @@ private:
         checkKeys(n, {"type", "center", "radius", "material", "transform"});
         require(n, "center");
         require(n, "radius");
-        scene_.spheres.push_back(sphere(n));
+        Sphere s{vec3(n["center"]), positive(n["radius"]), 0};
+        s.material = n.has("material") ? materialNamed(n["material"]) : defaultMaterial();
+        const glm::mat4 m = optionalTransform(n);
+        if (isSimilarity(m)) {
+            // A sphere stays a sphere under rotation, uniform scale and translation.
+            s.center = glm::vec3(m * glm::vec4(s.center, 1.0f));
+            s.radius *= glm::length(glm::vec3(m[0]));
+            scene_.spheres.push_back(s);
+            return;
+        }
+        // Any other transform makes it an ellipsoid: the unit sphere, scaled, moved, transformed.
+        AnalyticObject e;
+        e.transform = m * glm::translate(glm::mat4(1.0f), s.center) * glm::scale(glm::mat4(1.0f), glm::vec3(s.radius));
+        e.material = s.material;
+        scene_.analytics.push_back(e);
+    }
+
+    static bool isSimilarity(const glm::mat4& m) {
+        const glm::vec3 x(m[0]), y(m[1]), z(m[2]);
+        const float scale = glm::length(x), tolerance = 1e-4f * scale * scale;
+        return std::abs(glm::dot(y, y) - scale * scale) <= tolerance && std::abs(glm::dot(z, z) - scale * scale) <= tolerance &&
+               std::abs(glm::dot(x, y)) <= tolerance && std::abs(glm::dot(y, z)) <= tolerance &&
+               std::abs(glm::dot(x, z)) <= tolerance;
     }
 
     /// An analytic primitive: its canonical shape sized by its own keys, then placed by its transform.
@@ -731,24 +753,6 @@ private:
         if (mesh.faceMaterial.empty())
             mesh.faceMaterial.assign(mesh.triangles.size(), n.has("material") ? materialNamed(n["material"]) : defaultMaterial());
         scene_.instances.push_back({addMesh(std::move(mesh)), optionalTransform(n), MeshInstance::kMeshMaterials});
-    }
-
-    Sphere sphere(const Node& n) {
-        Sphere s{vec3(n["center"]), positive(n["radius"]), 0};
-        s.material = n.has("material") ? materialNamed(n["material"]) : defaultMaterial();
-        if (!n.has("transform")) return s;
-        const glm::mat4 m = transform(n["transform"]);
-        // A sphere stays a sphere only under rotation, uniform scale and translation.
-        const glm::vec3 x(m[0]), y(m[1]), z(m[2]);
-        const float scale = glm::length(x), tolerance = 1e-4f * scale * scale;
-        const bool similarity = std::abs(glm::dot(y, y) - scale * scale) <= tolerance &&
-                                std::abs(glm::dot(z, z) - scale * scale) <= tolerance &&
-                                std::abs(glm::dot(x, y)) <= tolerance && std::abs(glm::dot(y, z)) <= tolerance &&
-                                std::abs(glm::dot(x, z)) <= tolerance;
-        if (!similarity) fail(n["transform"].path, "a sphere's transform must be a similarity (uniform scale, rotation, translation)");
-        s.center = glm::vec3(m * glm::vec4(s.center, 1.0f));
-        s.radius *= scale;
-        return s;
     }
 
     std::filesystem::path folder_;
