@@ -242,6 +242,24 @@ TEST(Accelerators, OneCellGridAndOneTriangle) {
     expectSameOnRays(mesh, rays, "one triangle");
 }
 
+TEST(Accelerators, FlatSceneFarFromTheOrigin) {
+    // One triangle in the plane z = 1e5: the grid's flat axis must still get a thickness there.
+    TriangleMesh mesh;
+    mesh.positions = {{0, 0, 1e5f}, {1, 0, 1e5f}, {0, 1, 1e5f}};
+    mesh.triangles = {{0, 1, 2}};
+    auto geometry = std::make_shared<const SceneGeometry>(mesh);
+    for (const GridConfig& config : {uniformGridConfig(), recursiveGridConfig()}) {
+        const Grid grid = buildGrid(PrimitiveTable(*geometry), config);
+        ASSERT_FALSE(grid.grids.empty());
+        for (int a = 0; a < 3; ++a) EXPECT_GE(grid.grids[0].res[a], 1);
+        EXPECT_GT(grid.grids[0].upper[2], grid.grids[0].lower[2]);
+    }
+    std::vector<Ray> rays;
+    for (int i = 0; i < 50; ++i)
+        rays.push_back({0.02f * float(i), 0.3f, 1e5f - 10.0f, 0.0f, 0.0f, 1.0f, 0.0f, 1e30f});
+    expectSameOnRays(mesh, rays, "flat far triangle");
+}
+
 TEST(Accelerators, KdTreeCutsOffEmptySpaceIntoEmptyLeaves) {
     // Two small clusters far apart: the SAH cuts the empty space between them off into empty leaves.
     TriangleMesh mesh = makeIcosphere(2);

@@ -92,6 +92,8 @@ TEST(Terrain, BadValuesNameTheirKey) {
     EXPECT_NE(error(R"({"type": "heightfield", "octaves": 40})").find("objects[0].octaves"), std::string::npos);
     EXPECT_NE(error(R"({"type": "generated", "shape": "terrain", "height": -1})").find("objects[0].height"), std::string::npos);
     EXPECT_NE(error(R"({"type": "heightfield", "radius": 1})").find("radius"), std::string::npos);
+    EXPECT_NE(error(R"({"type": "heightfield", "lacunarity": 1000, "octaves": 16})").find("lacunarity"), std::string::npos);
+    EXPECT_NE(error(R"({"type": "heightfield", "roughness": -40})").find("roughness"), std::string::npos);
 }
 
 } // namespace

@@ -80,7 +80,9 @@ private:
         const float largest = std::max({e.x, e.y, e.z, 1e-20f});
         for (int a = 0; a < 3; ++a)
             if (e[a] < largest * 0x1p-10f) {
-                const float pad = largest * 0x1p-11f;
+                // Large enough not to round away at the box's coordinates.
+                const float magnitude = std::max(std::fabs(box.lower[a]), std::fabs(box.upper[a]));
+                const float pad = std::max({largest * 0x1p-11f, magnitude * 0x1p-20f, 1e-30f});
                 box.lower[a] -= pad;
                 box.upper[a] += pad;
             }
@@ -98,12 +100,13 @@ private:
             k = std::pow(cells / volume, 1.0 / axes);
             bool changed = false;
             for (int a = 0; a < 3; ++a)
-                if (!single[a] && double(e[a]) * k < 1.0) single[a] = changed = true;
+                if (!single[a] && !(double(e[a]) * k >= 1.0)) single[a] = changed = true;  // NaN too
             if (!changed) break;
         }
         GridLevel g{};
         for (int a = 0; a < 3; ++a) {
-            g.res[a] = single[a] ? 1 : int(std::clamp(std::round(double(e[a]) * k), 1.0, double(config_.maxResolution)));
+            const double r = std::round(double(e[a]) * k);
+            g.res[a] = single[a] || !(r >= 1.0) ? 1 : (r >= double(config_.maxResolution) ? config_.maxResolution : int(r));
             g.lower[a] = box.lower[a];
             g.upper[a] = box.upper[a];
             g.cellSize[a] = e[a] / float(g.res[a]);

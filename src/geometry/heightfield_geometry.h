@@ -17,6 +17,8 @@ public:
     static constexpr int kTileCells = 8;
 
     explicit HeightFieldGeometry(const std::vector<HeightField>& fields);
+    HeightFieldGeometry(const HeightFieldGeometry&) = delete;  // its fields point into models_
+    HeightFieldGeometry& operator=(const HeightFieldGeometry&) = delete;
 
     uint32_t primitiveCount() const override { return uint32_t(fields_.size()); }
     Bounds3f primitiveBounds(uint32_t primId) const override { return fields_[primId].worldBounds; }

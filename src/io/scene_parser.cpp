@@ -410,6 +410,12 @@ private:
         if (n.has("frequency")) p.frequency = positive(n["frequency"]);
         if (n.has("height")) p.height = positive(n["height"]);
         if (n.has("seed")) p.seed = uint32_t(integer(n["seed"], 0, 1 << 30));
+        // The highest octave's frequency and weight must stay finite (and within the noise's precision).
+        const double top = double(p.frequency) * std::pow(double(p.lacunarity), p.octaves - 1);
+        const double weight = std::pow(double(p.lacunarity), -double(p.roughness) * (p.octaves - 1));
+        if (!(top <= 0x1p20) || !(weight <= 1e6) || !(std::fabs(p.offset) <= 1e3))
+            fail(n.path, "frequency * lacunarity^(octaves - 1) must be at most 2^20, lacunarity^(-roughness (octaves - 1)) "
+                         "at most 1e6 and |offset| at most 1000");
         return p;
     }
 

@@ -11,7 +11,9 @@ std::vector<float> ridgedMultifractalHeights(const TerrainParameters& p) {
     const int n = p.resolution + 1;
     std::vector<float> heights(size_t(n) * size_t(n));
     // The seed moves the domain by a lattice-free offset, so that seeds give unrelated terrains.
-    const glm::vec3 shift(float(p.seed) * 17.31f, float(p.seed) * 5.77f + 0.5f, float(p.seed) * 11.13f);
+    // Modulo the noise's period (256), in double, so that any seed keeps full float precision.
+    const auto wrap = [&](double f, double add) { return float(std::fmod(double(p.seed) * f, 256.0) + add); };
+    const glm::vec3 shift(wrap(17.31, 0.0), wrap(5.77, 0.5), wrap(11.13, 0.0));
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
             glm::vec3 q(-1.0f + 2.0f * float(i) / float(p.resolution), 0.0f, -1.0f + 2.0f * float(j) / float(p.resolution));

@@ -33,7 +33,8 @@ inline bool walkGrid(const GridView& grid, uint32_t level, const GridRay& r, flo
     for (int a = 0; a < 3; ++a) {
         // The cell of the entry point; rounding may put it one cell off near a boundary, which the
         // builder's margin around every cell covers.
-        const float p = r.origin[a] + t0 * r.dir[a];
+        // In double: far from the grid a float position would be off by more than the margin.
+        const float p = float(double(r.origin[a]) + double(t0) * double(r.dir[a]));
         const float f = std::floor((p - g.lower[a]) * g.invCellSize[a]);
         const int c = !(f >= 0.0f) ? 0 : (f >= float(g.res[a]) ? g.res[a] - 1 : int(f));  // clamped before converting
         cell[a] = c;
