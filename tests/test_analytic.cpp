@@ -14,6 +14,7 @@
 #include "geometry/analytic_geometry.h"
 #include "geometry/polynomial_roots.h"
 #include "io/scene_parser.h"
+#include "scene_errors.h"
 #include "geometry/scene_geometry.h"
 
 namespace wideray {
@@ -116,17 +117,18 @@ long double torusAt(const Ray& r, long double t, long double R, long double rr) 
     return q * q - 4 * R * R * (x * x + z * z);
 }
 
-/// The first root of the torus along a ray by fine sampling and bisection, independent of the solver.
-long double torusReference(const Ray& r, long double R, long double rr, long double tmax) {
-    const int steps = 200000;
-    long double a = 0, fa = torusAt(r, 0, R, rr);
+/// The first sign change of f over [0, tmax] by fine sampling (`steps` samples) and bisection in long
+/// double: the reference, independent of the solvers; inf where there is none.
+template <class F>
+long double firstCrossing(F&& f, long double tmax, int steps) {
+    long double a = 0, fa = f(0.0L);
     for (int i = 1; i <= steps; ++i) {
-        const long double b = tmax * i / steps, fb = torusAt(r, b, R, rr);
+        const long double b = tmax * i / steps, fb = f(b);
         if ((fa < 0) != (fb < 0)) {
             long double lo = a, hi = b;
             for (int k = 0; k < 200; ++k) {
                 const long double m = 0.5L * (lo + hi);
-                if ((torusAt(r, m, R, rr) < 0) == (fa < 0)) lo = m;
+                if ((f(m) < 0) == (fa < 0)) lo = m;
                 else hi = m;
             }
             return 0.5L * (lo + hi);
@@ -163,7 +165,7 @@ TEST(Analytic, TorusAgainstRootSearch) {
         const float angle = 6.2831853f * unit();
         const glm::vec3 target(std::cos(angle), 0.3f * (unit() - 0.5f), std::sin(angle));
         const Ray r = ray(o, glm::normalize(target - o));
-        const long double expected = torusReference(r, 1.0L, 0.25L, 10.0L);
+        const long double expected = firstCrossing([&](long double t) { return torusAt(r, t, 1.0L, 0.25L); }, 10.0L, 200000);
         const float t = trace(torus, r).t;
         if (std::isinf(double(expected))) {
             EXPECT_EQ(t, kInf) << "ray " << i;
@@ -175,7 +177,7 @@ TEST(Analytic, TorusAgainstRootSearch) {
     EXPECT_GT(hits, 300u);
 }
 
-/// A blob's field minus its threshold along a ray, in long double, and its first crossing.
+/// A blob's field minus its threshold along a ray, in long double.
 long double blobAt(const AnalyticObject& blob, const Ray& r, long double t) {
     long double f = -blob.threshold;
     for (const BlobBall& b : blob.balls) {
@@ -184,26 +186,6 @@ long double blobAt(const AnalyticObject& blob, const Ray& r, long double t) {
         if (u > 0) f += b.strength * u * u * u;
     }
     return f;
-}
-
-long double blobReference(const AnalyticObject& blob, const Ray& r, long double tmax) {
-    const int steps = 100000;
-    long double a = 0, fa = blobAt(blob, r, 0);
-    for (int i = 1; i <= steps; ++i) {
-        const long double b = tmax * i / steps, fb = blobAt(blob, r, b);
-        if ((fa < 0) != (fb < 0)) {
-            long double lo = a, hi = b;
-            for (int k = 0; k < 200; ++k) {
-                const long double m = 0.5L * (lo + hi);
-                if ((blobAt(blob, r, m) < 0) == (fa < 0)) lo = m;
-                else hi = m;
-            }
-            return 0.5L * (lo + hi);
-        }
-        a = b;
-        fa = fb;
-    }
-    return INFINITY;
 }
 
 TEST(Analytic, BlobsAgainstTheirField) {
@@ -225,7 +207,7 @@ TEST(Analytic, BlobsAgainstTheirField) {
         const glm::vec3 o(6 * unit() - 3, 6 * unit() - 3, 6 * unit() - 3);
         const glm::vec3 target(unit() - 0.5f, 0.6f * (unit() - 0.5f), 0.6f * (unit() - 0.5f));
         const Ray r = ray(o, glm::normalize(target - o));
-        const long double expected = blobReference(blob, r, 8.0L);
+        const long double expected = firstCrossing([&](long double t) { return blobAt(blob, r, t); }, 8.0L, 100000);
         const Result h = trace(blob, r);
         if (std::isinf(double(expected))) {
             EXPECT_EQ(h.t, kInf) << "ray " << i;
@@ -331,14 +313,7 @@ TEST(Analytic, SceneKeysRoundTripAndBadValuesNameTheirKey) {
         EXPECT_EQ(second.analytics[i].minorRadius, first.analytics[i].minorRadius) << i;
         EXPECT_EQ(second.analytics[i].balls.size(), first.analytics[i].balls.size()) << i;
     }
-    auto error = [](const std::string& object) {
-        try {
-            parseScene(R"({"lights": [{"type": "point", "position": [0, 5, 0]}], "objects": [)" + object + "]}", "bad.json");
-        } catch (const InputError& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
+    const auto error = testing::objectError;
     EXPECT_NE(error(R"({"type": "quadric", "coefficients": [1, 2]})").find("objects[0].coefficients"), std::string::npos);
     EXPECT_NE(error(R"({"type": "quadric", "coefficients": [0,0,0,0,0,0,0,0,0,0]})").find("not all be zero"), std::string::npos);
     EXPECT_NE(error(R"({"type": "torus", "major_radius": 1, "minor_radius": 2})").find("minor_radius"), std::string::npos);

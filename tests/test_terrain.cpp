@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "io/scene_parser.h"
 #include "io/terrain.h"
+#include "scene_errors.h"
 
 namespace wideray {
 namespace {
@@ -80,14 +81,7 @@ TEST(Terrain, HeightFieldAgreesWithTheMesh) {
 }
 
 TEST(Terrain, BadValuesNameTheirKey) {
-    auto error = [](const std::string& object) {
-        try {
-            parseScene(R"({"lights": [{"type": "point", "position": [0, 5, 0]}], "objects": [)" + object + "]}", "bad.json");
-        } catch (const InputError& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
+    const auto error = testing::objectError;
     EXPECT_NE(error(R"({"type": "heightfield", "resolution": 0})").find("objects[0].resolution"), std::string::npos);
     EXPECT_NE(error(R"({"type": "heightfield", "octaves": 40})").find("objects[0].octaves"), std::string::npos);
     EXPECT_NE(error(R"({"type": "generated", "shape": "terrain", "height": -1})").find("objects[0].height"), std::string::npos);

@@ -2,7 +2,7 @@
 
 #include "backends/course_structure.h"
 #include "backends/wideray_structure.h"
-#include "core/error.h"
+#include "backends/find_by_name.h"
 
 namespace wideray {
 namespace {
@@ -32,12 +32,7 @@ constexpr Accel kAccels[] = {
 std::span<const Accel> accels() { return kAccels; }
 
 const Accel& findAccel(std::string_view name) {
-    std::string names;
-    for (const Accel& a : kAccels) {
-        if (name == a.name) return a;
-        names += std::string(names.empty() ? "" : ", ") + a.name;
-    }
-    throw InputError("--accel", "", "no acceleration structure is named '" + std::string(name) + "' (expected " + names + ")");
+    return findByName(accels(), name, "--accel", "acceleration structure");
 }
 
 std::shared_ptr<const Structure> buildWideray(std::shared_ptr<const SceneGeometry> geometry,

@@ -2,7 +2,7 @@
 
 #include "backends/accel_registry.h"
 #include "backends/embree_structure.h"
-#include "core/error.h"
+#include "backends/find_by_name.h"
 
 namespace wideray {
 namespace {
@@ -16,13 +16,6 @@ constexpr Backend kBackends[] = {
 
 std::span<const Backend> backends() { return kBackends; }
 
-const Backend& findBackend(std::string_view name) {
-    std::string names;
-    for (const Backend& b : kBackends) {
-        if (name == b.name) return b;
-        names += std::string(names.empty() ? "" : ", ") + b.name;
-    }
-    throw InputError("--backend", "", "no backend is named '" + std::string(name) + "' (expected " + names + ")");
-}
+const Backend& findBackend(std::string_view name) { return findByName(backends(), name, "--backend", "backend"); }
 
 } // namespace wideray

@@ -74,31 +74,11 @@ glm::dvec3 blobGradient(const AnalyticObject& blob, const glm::dvec3& p) {
     return g;
 }
 
-/// The ray's interval through the box [lower, upper]; false when it misses.
-bool slab(const glm::dvec3& lower, const glm::dvec3& upper, const glm::dvec3& o, const glm::dvec3& d, double& t0,
-          double& t1) {
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0) {
-            if (o[a] < lower[a] || o[a] > upper[a]) return false;
-            continue;
-        }
-        double n = (lower[a] - o[a]) / d[a], f = (upper[a] - o[a]) / d[a];
-        if (n > f) std::swap(n, f);
-        t0 = std::max(t0, n);
-        t1 = std::min(t1, f);
-    }
-    return t0 <= t1;
-}
-
 } // namespace
 
 AnalyticGeometry::AnalyticGeometry(const std::vector<AnalyticObject>& objects) {
     for (const AnalyticObject& model : objects) {
-        Object o;
-        o.model = model;
-        const glm::dmat4 toWorld(model.transform);
-        o.worldToObject = glm::inverse(toWorld);
-        o.normalToWorld = glm::transpose(glm::dmat3(o.worldToObject));
+        Object o{model, ObjectSpace(model.transform)};
         if (model.shape == AnalyticShape::Torus) {
             const double extent = double(model.majorRadius) + double(model.minorRadius);
             o.lower = {-extent, -model.minorRadius, -extent};
@@ -115,16 +95,7 @@ AnalyticGeometry::AnalyticGeometry(const std::vector<AnalyticObject>& objects) {
             o.lower = glm::dvec3(-1.0);
             o.upper = glm::dvec3(1.0);
         }
-        // The world box of the object-space box's corners (exact for an affine transform), grown by
-        // a little for the rounding of the float box.
-        for (int corner = 0; corner < 8; ++corner) {
-            const glm::dvec3 p((corner & 1) ? o.upper.x : o.lower.x, (corner & 2) ? o.upper.y : o.lower.y,
-                               (corner & 4) ? o.upper.z : o.lower.z);
-            o.worldBounds.grow(glm::vec3(toWorld * glm::dvec4(p, 1.0)));
-        }
-        const glm::vec3 pad = 1e-6f * (glm::abs(o.worldBounds.lower) + glm::abs(o.worldBounds.upper)) + 1e-30f;
-        o.worldBounds.lower -= pad;
-        o.worldBounds.upper += pad;
+        o.worldBounds = o.space.bounds(o.lower, o.upper);
         objects_.push_back(o);
     }
 }
@@ -132,7 +103,7 @@ AnalyticGeometry::AnalyticGeometry(const std::vector<AnalyticObject>& objects) {
 bool AnalyticGeometry::intersectObject(const Object& object, const glm::dvec3& o, const glm::dvec3& d, double tnear,
                                        double tfar, double& tHit, int& part) const {
     double t0 = tnear, t1 = tfar;
-    if (!slab(object.lower, object.upper, o, d, t0, t1)) return false;
+    if (!boxInterval(object.lower, object.upper, o, d, t0, t1)) return false;
     // Solved from the entry point, where the polynomial's terms are of the size of the object.
     const double ts = t0;
     const glm::dvec3 os = o + ts * d;
@@ -245,8 +216,8 @@ bool AnalyticGeometry::intersectBlob(const AnalyticObject& blob, const glm::dvec
 
 bool AnalyticGeometry::intersect(const Ray& ray, uint32_t primId, float tfar, float& t, float& u, float& v) const {
     const Object& object = objects_[primId];
-    const glm::dvec3 o(object.worldToObject * glm::dvec4(ray.ox, ray.oy, ray.oz, 1.0));
-    const glm::dvec3 d(glm::dmat3(object.worldToObject) * glm::dvec3(ray.dx, ray.dy, ray.dz));
+    glm::dvec3 o, d;
+    object.space.ray(ray, o, d);
     double tHit;
     int part;
     if (!intersectObject(object, o, d, ray.tnear, tfar, tHit, part)) return false;
@@ -259,8 +230,8 @@ bool AnalyticGeometry::intersect(const Ray& ray, uint32_t primId, float tfar, fl
 
 SurfacePoint AnalyticGeometry::surface(const Ray& ray, const Hit& hit) const {
     const Object& object = objects_[hit.primId];
-    const glm::dvec3 o(object.worldToObject * glm::dvec4(ray.ox, ray.oy, ray.oz, 1.0));
-    const glm::dvec3 d(glm::dmat3(object.worldToObject) * glm::dvec3(ray.dx, ray.dy, ray.dz));
+    glm::dvec3 o, d;
+    object.space.ray(ray, o, d);
     glm::dvec3 p = o + double(hit.t) * d;
     const int part = int(hit.u);
     glm::dvec3 normal;
@@ -283,11 +254,9 @@ SurfacePoint AnalyticGeometry::surface(const Ray& ray, const Hit& hit) const {
         normal = {0.0, p.y, 0.0};
         uv = {float(0.5 * (p.x + 1.0)), float(0.5 * (p.z + 1.0))};
     }
-    const glm::dvec3 n = object.normalToWorld * normal;
-    const double length = glm::length(n);
     SurfacePoint sp;
-    sp.position = glm::vec3(glm::dmat4(object.model.transform) * glm::dvec4(p, 1.0));
-    sp.geometricNormal = sp.shadingNormal = length > 0 ? glm::vec3(n / length) : glm::vec3(0, 1, 0);
+    sp.position = object.space.point(p);
+    sp.geometricNormal = sp.shadingNormal = object.space.normal(normal);
     sp.uv = uv;
     sp.material = object.model.material;
     return sp;

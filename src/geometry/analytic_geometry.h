@@ -11,6 +11,7 @@
 
 #include "core/geometry.h"
 #include "core/scene.h"
+#include "geometry/object_space.h"
 
 namespace wideray {
 
@@ -35,12 +36,10 @@ public:
 private:
     struct Object {
         AnalyticObject model;
-        glm::dmat4 worldToObject;
-        glm::dmat3 normalToWorld;  ///< the inverse transpose of the transform's linear part
-        Quadric quadric{};         ///< all shapes but the torus
-        double yMin = -1, yMax = 1;  ///< the quadrics' extent along y (caps there when capped)
-        glm::dvec3 lower, upper;   ///< the object-space box
-        Bounds3f worldBounds;
+        ObjectSpace space;
+        Quadric quadric{};         ///< the quadrics (within -1 <= y <= 1, capped there where capped)
+        glm::dvec3 lower{0.0}, upper{0.0};  ///< the object-space box
+        Bounds3f worldBounds{};
     };
 
     /// Candidate distances along the object-space ray (o, d) in [tnear, tfar], with the part hit.

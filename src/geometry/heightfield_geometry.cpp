@@ -68,11 +68,7 @@ bool intersectTriangle(const glm::dvec3& o, const glm::dvec3& d, const glm::dvec
 
 HeightFieldGeometry::HeightFieldGeometry(const std::vector<HeightField>& fields) : models_(fields) {
     for (const HeightField& model : models_) {
-        Field f;
-        f.model = &model;
-        const glm::dmat4 toWorld(model.transform);
-        f.worldToObject = glm::inverse(toWorld);
-        f.normalToWorld = glm::transpose(glm::dmat3(f.worldToObject));
+        Field f{&model, ObjectSpace(model.transform)};
         const int res = model.terrain.resolution;
         f.tiles = (res + kTileCells - 1) / kTileCells;
         f.tileLow.assign(size_t(f.tiles) * size_t(f.tiles), std::numeric_limits<float>::infinity());
@@ -91,13 +87,7 @@ HeightFieldGeometry::HeightFieldGeometry(const std::vector<HeightField>& fields)
         const auto [lo, hi] = std::minmax_element(model.heights.begin(), model.heights.end());
         f.low = *lo;
         f.high = *hi;
-        for (int corner = 0; corner < 8; ++corner) {
-            const glm::dvec3 p((corner & 1) ? 1.0 : -1.0, (corner & 2) ? f.high : f.low, (corner & 4) ? 1.0 : -1.0);
-            f.worldBounds.grow(glm::vec3(toWorld * glm::dvec4(p, 1.0)));
-        }
-        const glm::vec3 pad = 1e-6f * (glm::abs(f.worldBounds.lower) + glm::abs(f.worldBounds.upper)) + 1e-30f;
-        f.worldBounds.lower -= pad;
-        f.worldBounds.upper += pad;
+        f.worldBounds = f.space.bounds({-1.0, f.low, -1.0}, {1.0, f.high, 1.0});
         fields_.push_back(std::move(f));
     }
 }
@@ -123,22 +113,10 @@ void HeightFieldGeometry::cellTriangle(const Field& f, int i, int j, int which, 
 
 bool HeightFieldGeometry::intersect(const Ray& ray, uint32_t primId, float tfar, float& t, float& u, float& v) const {
     const Field& f = fields_[primId];
-    const glm::dvec3 o(f.worldToObject * glm::dvec4(ray.ox, ray.oy, ray.oz, 1.0));
-    const glm::dvec3 d(glm::dmat3(f.worldToObject) * glm::dvec3(ray.dx, ray.dy, ray.dz));
-    // The field's box.
+    glm::dvec3 o, d;
+    f.space.ray(ray, o, d);
     double t0 = ray.tnear, t1 = tfar;
-    const glm::dvec3 lower(-1.0, f.low, -1.0), upper(1.0, f.high, 1.0);
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0) {
-            if (o[a] < lower[a] || o[a] > upper[a]) return false;
-            continue;
-        }
-        double n = (lower[a] - o[a]) / d[a], x = (upper[a] - o[a]) / d[a];
-        if (n > x) std::swap(n, x);
-        t0 = std::max(t0, n);
-        t1 = std::min(t1, x);
-    }
-    if (!(t0 <= t1)) return false;
+    if (!boxInterval({-1.0, f.low, -1.0}, {1.0, f.high, 1.0}, o, d, t0, t1)) return false;
     const int res = f.model->terrain.resolution;
     const double cell = 2.0 / double(res), tile = cell * kTileCells;
     double best = kInf;
@@ -180,13 +158,12 @@ SurfacePoint HeightFieldGeometry::surface(const Ray& ray, const Hit& hit) const 
     const int code = int(hit.u), i = code / 2, which = code % 2, j = int(hit.v);
     glm::dvec3 a, b, c;
     cellTriangle(f, i, j, which, a, b, c);
-    const glm::dvec3 o(f.worldToObject * glm::dvec4(ray.ox, ray.oy, ray.oz, 1.0));
-    const glm::dvec3 d(glm::dmat3(f.worldToObject) * glm::dvec3(ray.dx, ray.dy, ray.dz));
+    glm::dvec3 o, d;
+    f.space.ray(ray, o, d);
     const glm::dvec3 p = o + double(hit.t) * d;
-    const glm::dvec3 n = f.normalToWorld * glm::cross(b - a, c - a);
     SurfacePoint sp;
-    sp.position = glm::vec3(glm::dmat4(f.model->transform) * glm::dvec4(p, 1.0));
-    sp.geometricNormal = sp.shadingNormal = glm::vec3(glm::normalize(n));
+    sp.position = f.space.point(p);
+    sp.geometricNormal = sp.shadingNormal = f.space.normal(glm::cross(b - a, c - a));
     sp.uv = {float(0.5 * (p.x + 1.0)), float(0.5 * (p.z + 1.0))};
     sp.material = f.model->material;
     return sp;

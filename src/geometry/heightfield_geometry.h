@@ -9,6 +9,7 @@
 
 #include "core/geometry.h"
 #include "core/scene.h"
+#include "geometry/object_space.h"
 
 namespace wideray {
 
@@ -29,12 +30,11 @@ public:
 private:
     struct Field {
         const HeightField* model;
-        glm::dmat4 worldToObject;
-        glm::dmat3 normalToWorld;
-        int tiles;                          ///< per side
-        std::vector<float> tileLow, tileHigh;  ///< each tile's height range
-        double low, high;                   ///< the whole field's
-        Bounds3f worldBounds;
+        ObjectSpace space;
+        int tiles = 0;                          ///< per side
+        std::vector<float> tileLow{}, tileHigh{};  ///< each tile's height range
+        double low = 0, high = 0;               ///< the whole field's
+        Bounds3f worldBounds{};
     };
 
     double height(const Field& f, int i, int j) const;

@@ -60,18 +60,17 @@ private:
                               UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX};
 };
 
-/// A leaf's or cell's items, each tested once per ray when Mailboxed.
-template <bool AnyHit, bool Mailboxed>
+/// A leaf's or cell's items; with a mailbox (structures that list a primitive in several leaves or
+/// cells), each tested once per ray.
+template <bool AnyHit>
 [[gnu::always_inline]] inline bool intersectItems(const PrimitiveView& prims, const uint32_t* items, uint32_t count,
-                                                  const SingleRayState& s, const Ray& ray, Hit& hit, Mailbox& mailbox,
+                                                  const SingleRayState& s, const Ray& ray, Hit& hit, Mailbox* mailbox,
                                                   TraversalCost& cost) {
     ++cost.leaves;
     for (uint32_t i = 0; i < count; ++i) {
-        if constexpr (Mailboxed) {
-            if (mailbox.seen(items[i])) {
-                ++cost.mailboxHits;
-                continue;
-            }
+        if (mailbox && mailbox->seen(items[i])) {
+            ++cost.mailboxHits;
+            continue;
         }
         if (intersectItem<AnyHit>(prims, items[i], s, ray, hit, cost)) return true;
     }

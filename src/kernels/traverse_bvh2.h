@@ -32,7 +32,6 @@ inline bool traceBvh2(const Bvh2View& bvh, const Ray& ray, Hit& hit, TraversalCo
     Entry stack[kMaxBvhDepth + 1];
     int sp = 0;
     uint32_t node = 0;
-    Mailbox unused;
     for (;;) {
         const Bvh2Node& n = bvh.nodes[node];
         if (n.count == 0) {
@@ -50,7 +49,7 @@ inline bool traceBvh2(const Bvh2View& bvh, const Ray& ray, Hit& hit, TraversalCo
                 node = n.first + (hit0 ? 0 : 1);
                 continue;
             }
-        } else if (intersectItems<AnyHit, false>(bvh.prims, bvh.items + n.first, n.count, s, ray, hit, unused, cost)) {
+        } else if (intersectItems<AnyHit>(bvh.prims, bvh.items + n.first, n.count, s, ray, hit, nullptr, cost)) {
             return true;
         }
         // Next: the nearest pushed subtree the ray may still reach.
@@ -69,7 +68,6 @@ template <bool AnyHit>
 inline bool traceSkip(const SkipView& tree, const Ray& ray, Hit& hit, TraversalCost& cost) {
     if (!isValidRay(ray)) return false;
     const SingleRayState s = makeSingleRayState(ray);
-    Mailbox unused;
     for (uint32_t i = 0; i < tree.nodeCount;) {
         const SkipNode& n = tree.nodes[i];
         float tEntry, tExit;
@@ -82,7 +80,7 @@ inline bool traceSkip(const SkipView& tree, const Ray& ray, Hit& hit, TraversalC
             ++i;
             continue;
         }
-        if (intersectItems<AnyHit, false>(tree.prims, tree.items + n.first, n.count, s, ray, hit, unused, cost)) return true;
+        if (intersectItems<AnyHit>(tree.prims, tree.items + n.first, n.count, s, ray, hit, nullptr, cost)) return true;
         i = n.skip;
     }
     return false;

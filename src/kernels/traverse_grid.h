@@ -58,8 +58,8 @@ inline bool walkGrid(const GridView& grid, uint32_t level, const GridRay& r, flo
                                                         uint32_t(g.res[0]) + uint32_t(cell[0])];
         if (c.isSubgrid()) {
             if (walkGrid<AnyHit>(grid, c.first, r, tEnter, tExit, hit, mailbox, cost)) return true;
-        } else if (c.count && intersectItems<AnyHit, true>(grid.prims, grid.items + c.first, c.count, r.s, r.ray, hit,
-                                                            mailbox, cost)) {
+        } else if (c.count && intersectItems<AnyHit>(grid.prims, grid.items + c.first, c.count, r.s, r.ray, hit,
+                                                      &mailbox, cost)) {
             return true;
         }
         if (!AnyHit && hit.t < tExit - std::fabs(tExit) * kGridExitSlack) return true;

@@ -74,7 +74,7 @@ inline bool traceKdTree(const KdTreeView& tree, const Ray& ray, Hit& hit, Traver
             }
             continue;
         }
-        if (intersectItems<AnyHit, true>(tree.prims, tree.items + n.firstItem(), n.count(), s, ray, hit, mailbox, cost))
+        if (intersectItems<AnyHit>(tree.prims, tree.items + n.firstItem(), n.count(), s, ray, hit, &mailbox, cost))
             return true;
         // A closer hit than where a node starts skips it: everything in it lies beyond.
         if (!pop()) return false;
