@@ -89,7 +89,7 @@ bench-accelerators: deps
 	  --why docs/accelerators-why.md --markdown docs/accelerators.md
 
 ## Renders every effect scene to docs/gallery/NAME.png.
-GALLERY_SCENES := beer metals soft_shadows glossy dof textures fog polarization polarization_off quadrics blobs terrain
+GALLERY_SCENES := beer metals soft_shadows glossy dof textures fog polarization polarization_off quadrics blobs terrain csg
 # The path-traced interior needs the shared Sponza.
 GALLERY_SCENES += $(if $(wildcard $(SCENES_DIR)/crytek-sponza/sponza.obj),sponza_path)
 gallery: configure

@@ -14,6 +14,7 @@
 #include "geometry/analytic_geometry.h"
 #include "geometry/polynomial_roots.h"
 #include "io/scene_parser.h"
+#include "backend_trace.h"
 #include "scene_errors.h"
 #include "geometry/scene_geometry.h"
 
@@ -263,26 +264,14 @@ TEST(Analytic, EveryBackendAndStructureFindsTheSameHits) {
     const Scene scene = parseScene(kShapesScene, "shapes.json");
     ASSERT_EQ(scene.analytics.size(), 9u);
     auto geometry = std::make_shared<const SceneGeometry>(scene);
-    std::vector<Ray> rays;
-    for (int j = 0; j < 48; ++j)
-        for (int i = 0; i < 64; ++i) {
-            const glm::vec3 target(-5.0f + 10.0f * float(i) / 63.0f, -3.0f + 6.5f * float(j) / 47.0f, 0.0f);
-            rays.push_back(ray({0, 2, 9}, glm::normalize(target - glm::vec3(0, 2, 9))));
-        }
-    auto traceWith = [&](const std::string& backend, const std::string& accel) {
-        StructureOptions options;
-        options.accel = accel;
-        std::vector<Hit> hits(rays.size());
-        findBackend(backend).build(geometry, options)->tracer({})->intersect(rays, hits, Coherence::Incoherent);
-        return hits;
-    };
-    const std::vector<Hit> expected = traceWith("wideray", "bvh8");
+    const std::vector<Ray> rays = testing::rayFan({0, 2, 9}, {-5, -3}, {5, 3.5f}, 64, 48);
+    const std::vector<Hit> expected = testing::traceThrough(geometry, "wideray", "bvh8", rays);
     size_t analyticHits = 0;
     for (const Hit& h : expected) analyticHits += h.valid() && h.geomId != 0;
     EXPECT_GT(analyticHits, rays.size() / 8);
     for (const auto& [backend, accel] : std::vector<std::pair<std::string, std::string>>{
              {"embree", ""}, {"wideray", "bvh4"}, {"wideray", "kdtree"}, {"wideray", "grid"}}) {
-        const std::vector<Hit> hits = traceWith(backend, accel);
+        const std::vector<Hit> hits = testing::traceThrough(geometry, backend, accel, rays);
         size_t mismatches = 0;
         for (size_t i = 0; i < rays.size(); ++i) {
             // Embree's own triangle test rounds t differently; the analytic primitives are ours in both.

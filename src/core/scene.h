@@ -102,6 +102,27 @@ struct AnalyticObject {
     uint32_t material = 0;
 };
 
+/// Constructive solid geometry: a tree of set operations over closed solids. Difference is the first
+/// operand minus all the others; xor is inside where an odd number of its operands are.
+enum class CsgOperation : uint8_t { Union, Intersection, Difference, Xor };
+
+/// A node of a CSG tree: an operation over other nodes, or a leaf solid: an analytic primitive
+/// (closed: quadrics capped, no general quadric) or a closed triangle mesh placed by an instance.
+struct CsgNode {
+    enum class Kind : uint8_t { Operation, Analytic, Mesh };
+    Kind kind = Kind::Operation;
+    CsgOperation operation = CsgOperation::Union;
+    uint32_t solid = 0;              ///< Analytic: index into CsgObject::analytics; Mesh: into CsgObject::meshes
+    std::vector<uint32_t> operands;  ///< Operation: node indices, at least two
+};
+
+/// One CSG object of the scene; its surfaces keep the materials of the solids they come from.
+struct CsgObject {
+    std::vector<CsgNode> nodes;  ///< nodes[0] is the root
+    std::vector<AnalyticObject> analytics;
+    std::vector<MeshInstance> meshes;  ///< Scene::meshes placed in world space
+};
+
 /// Musgrave's ridged multifractal over [-1, 1]^2 (io/terrain.h): the generated shape "terrain" and
 /// the height-field primitive.
 struct TerrainParameters {
@@ -157,6 +178,7 @@ struct Scene {
     std::vector<Sphere> spheres;
     std::vector<AnalyticObject> analytics;
     std::vector<HeightField> heightFields;
+    std::vector<CsgObject> csgs;
 };
 
 } // namespace wideray

@@ -95,28 +95,29 @@ AnalyticGeometry::AnalyticGeometry(const std::vector<AnalyticObject>& objects) {
             o.lower = glm::dvec3(-1.0);
             o.upper = glm::dvec3(1.0);
         }
+        // A margin keeps the roots where the box touches the surface (an ellipsoid's on the box faces)
+        // inside the searched interval, and gives crossings() room outside the solid beyond its last root.
+        const glm::dvec3 margin = 1e-4 * (o.upper - o.lower);
+        o.lower -= margin;
+        o.upper += margin;
         o.worldBounds = o.space.bounds(o.lower, o.upper);
         objects_.push_back(o);
     }
 }
 
-bool AnalyticGeometry::intersectObject(const Object& object, const glm::dvec3& o, const glm::dvec3& d, double tnear,
-                                       double tfar, double& tHit, int& part) const {
+template <class Visit>
+void AnalyticGeometry::visitRoots(const Object& object, const glm::dvec3& o, const glm::dvec3& d, double tnear,
+                                  double tfar, Visit&& visit) const {
     double t0 = tnear, t1 = tfar;
-    if (!boxInterval(object.lower, object.upper, o, d, t0, t1)) return false;
+    if (!boxInterval(object.lower, object.upper, o, d, t0, t1)) return;
+    if (object.model.shape == AnalyticShape::Blob) return visitBlobRoots(object.model, o, d, t0, t1, visit);
     // Solved from the entry point, where the polynomial's terms are of the size of the object.
     const double ts = t0;
     const glm::dvec3 os = o + ts * d;
-    bool found = false;
-    auto take = [&](double t, int p) {
-        if (t >= tnear && t <= tfar && (!found || t < tHit)) {
-            tHit = t;
-            part = p;
-            found = true;
-        }
+    auto take = [&](double t, int part) {
+        if (t >= tnear && t <= tfar) visit(t, part);
     };
     double roots[8];
-    if (object.model.shape == AnalyticShape::Blob) return intersectBlob(object.model, o, d, t0, t1, tHit, part);
     if (object.model.shape == AnalyticShape::Torus) {
         const double R = object.model.majorRadius, r = object.model.minorRadius, R2 = R * R;
         const double length = glm::length(d);
@@ -141,7 +142,7 @@ bool AnalyticGeometry::intersectObject(const Object& object, const glm::dvec3& o
             }
             take(ts + s / length, 0);
         }
-        return found;
+        return;
     }
     const Quadric& q = object.quadric;
     const double A = q.a * d.x * d.x + q.b * d.y * d.y + q.c * d.z * d.z + q.d * d.x * d.y + q.e * d.x * d.z + q.f * d.y * d.z;
@@ -166,13 +167,13 @@ bool AnalyticGeometry::intersectObject(const Object& object, const glm::dvec3& o
             if (q.at(p) <= 0.0) take(t, 1 + end);
         }
     }
-    return found;
 }
 
-bool AnalyticGeometry::intersectBlob(const AnalyticObject& blob, const glm::dvec3& o, const glm::dvec3& d, double t0,
-                                     double t1, double& tHit, int& part) {
+template <class Visit>
+void AnalyticGeometry::visitBlobRoots(const AnalyticObject& blob, const glm::dvec3& o, const glm::dvec3& d, double t0,
+                                      double t1, Visit&& visit) {
     // Where the ray enters and leaves each ball's support: between two such events the field is one
-    // polynomial of degree 6, whose first root in the piece is exact (bracketed by its derivatives).
+    // polynomial of degree 6, whose roots in the piece are exact (bracketed by its derivatives).
     struct Event {
         double t;
         uint32_t ball;
@@ -205,22 +206,73 @@ bool AnalyticGeometry::intersectBlob(const AnalyticObject& blob, const glm::dvec
         if (active.empty() || !(end > start)) continue;
         double c[7];
         blobPolynomial(blob, active, o + start * d, d, c);  // in t - start: terms of the blob's size
-        if (polynomialRoots(c, 6, 0.0, end - start, roots) > 0) {
-            tHit = start + roots[0];
-            part = 0;
-            return true;
-        }
+        const int count = polynomialRoots(c, 6, 0.0, end - start, roots);
+        for (int r = 0; r < count; ++r)
+            if (!visit(start + roots[r], 0)) return;
     }
-    return false;
+}
+
+bool AnalyticGeometry::contains(const Object& object, const glm::dvec3& p) {
+    switch (object.model.shape) {
+    case AnalyticShape::Torus: {
+        const double R = object.model.majorRadius, r = object.model.minorRadius;
+        const double q = glm::dot(p, p) + R * R - r * r;
+        return q * q - 4 * R * R * (p.x * p.x + p.z * p.z) < 0.0;
+    }
+    case AnalyticShape::Blob: {
+        double field = 0.0;
+        for (const BlobBall& ball : object.model.balls) {
+            const glm::dvec3 pc = p - glm::dvec3(ball.center);
+            const double u = 1.0 - glm::dot(pc, pc) / (double(ball.radius) * ball.radius);
+            if (u > 0.0) field += double(ball.strength) * u * u * u;
+        }
+        return field > double(object.model.threshold);
+    }
+    case AnalyticShape::Quadric:
+        return object.quadric.at(p) <= 0.0 && glm::all(glm::lessThanEqual(glm::abs(p), glm::dvec3(1.0)));
+    default: return object.quadric.at(p) <= 0.0 && (!object.model.capped || std::fabs(p.y) <= 1.0);
+    }
+}
+
+void AnalyticGeometry::crossings(uint32_t primId, const Ray& ray, SolidCrossings& out) const {
+    const Object& object = objects_[primId];
+    glm::dvec3 o, d;
+    object.space.ray(ray, o, d);
+    double t0 = -std::numeric_limits<double>::infinity(), t1 = -t0;
+    if (!boxInterval(object.lower, object.upper, o, d, t0, t1)) return;
+    const size_t first = out.size();
+    visitRoots(object, o, d, t0, t1, [&](double t, int part) {
+        out.push_back({t, false, primId, float(part)});
+        return true;
+    });
+    std::sort(out.begin() + first, out.end(), [](const SolidCrossing& a, const SolidCrossing& b) { return a.t < b.t; });
+    // Which roots change the inside, decided by the solid's own inequality between them: a tangent
+    // root, or one root found twice, changes nothing and is dropped.
+    bool inside = false;  // before the box
+    size_t kept = first;
+    for (size_t k = first; k < out.size(); ++k) {
+        const double next = k + 1 < out.size() ? out[k + 1].t : t1;
+        if (next == out[k].t && k + 1 < out.size()) continue;
+        const bool after = contains(object, o + 0.5 * (out[k].t + next) * d);
+        if (after == inside) continue;
+        inside = after;
+        out[k].enters = after;
+        out[kept++] = out[k];
+    }
+    out.resize(kept);
 }
 
 bool AnalyticGeometry::intersect(const Ray& ray, uint32_t primId, float tfar, float& t, float& u, float& v) const {
     const Object& object = objects_[primId];
     glm::dvec3 o, d;
     object.space.ray(ray, o, d);
-    double tHit;
-    int part;
-    if (!intersectObject(object, o, d, ray.tnear, tfar, tHit, part)) return false;
+    double tHit = std::numeric_limits<double>::infinity();
+    int part = 0;
+    visitRoots(object, o, d, ray.tnear, tfar, [&](double root, int rootPart) {
+        if (root < tHit) tHit = root, part = rootPart;
+        return false;  // a blob's first root is its nearest
+    });
+    if (tHit == std::numeric_limits<double>::infinity()) return false;
     t = float(tHit);
     if (!(t >= ray.tnear && t <= tfar)) return false;
     u = float(part);

@@ -12,6 +12,7 @@
 #include "core/geometry.h"
 #include "core/scene.h"
 #include "geometry/object_space.h"
+#include "geometry/solid_crossing.h"
 
 namespace wideray {
 
@@ -25,6 +26,11 @@ public:
     /// at the high end), for surface().
     bool intersect(const Ray& ray, uint32_t primId, float tfar, float& t, float& u, float& v) const override;
     SurfacePoint surface(const Ray& ray, const Hit& hit) const override;
+
+    /// Appends where the ray's whole line (any t) crosses the boundary of the solid primId, in
+    /// increasing t: the surface roots where the solid's inside changes (tangent roots dropped).
+    /// Closed solids only: capped quadrics other than the general quadric, the torus and blobs.
+    void crossings(uint32_t primId, const Ray& ray, SolidCrossings& out) const;
 
     /// A quadric's value at an object-space point: negative inside.
     struct Quadric {
@@ -42,13 +48,20 @@ private:
         Bounds3f worldBounds{};
     };
 
-    /// Candidate distances along the object-space ray (o, d) in [tnear, tfar], with the part hit.
-    bool intersectObject(const Object& object, const glm::dvec3& o, const glm::dvec3& d, double tnear, double tfar,
-                         double& t, int& part) const;
+    /// Calls visit(t, part) for the surface's roots along the object-space ray (o, d) in [tnear, tfar]:
+    /// in no particular order, except blobs, whose roots come in increasing t and stop when visit
+    /// returns false.
+    template <class Visit>
+    void visitRoots(const Object& object, const glm::dvec3& o, const glm::dvec3& d, double tnear, double tfar,
+                    Visit&& visit) const;
 
-    /// A blob over [t0, t1] (within its box): the first crossing of its threshold.
-    static bool intersectBlob(const AnalyticObject& blob, const glm::dvec3& o, const glm::dvec3& d, double t0, double t1,
-                              double& t, int& part);
+    /// A blob over [t0, t1] (within its box): its threshold's crossings, in increasing t.
+    template <class Visit>
+    static void visitBlobRoots(const AnalyticObject& blob, const glm::dvec3& o, const glm::dvec3& d, double t0, double t1,
+                               Visit&& visit);
+
+    /// Whether the object-space point lies inside the solid.
+    static bool contains(const Object& object, const glm::dvec3& p);
 
     std::vector<Object> objects_;
 };

@@ -1,6 +1,7 @@
 #include "geometry/geometry_registry.h"
 
 #include "geometry/analytic_geometry.h"
+#include "geometry/csg_geometry.h"
 #include "geometry/heightfield_geometry.h"
 #include "geometry/sphere_geometry.h"
 #include "geometry/triangle_geometry.h"
@@ -25,11 +26,17 @@ std::unique_ptr<Geometry> makeHeightFields(const Scene& scene) {
     return std::make_unique<HeightFieldGeometry>(scene.heightFields);
 }
 
+std::unique_ptr<Geometry> makeCsgs(const Scene& scene) {
+    if (scene.csgs.empty()) return nullptr;
+    return std::make_unique<CsgGeometry>(scene.csgs, scene.meshes);
+}
+
 constexpr GeometryKind kKinds[] = {
     {"triangles", &makeTriangles},
     {"spheres", &makeSpheres},
     {"analytic", &makeAnalytics},
     {"heightfields", &makeHeightFields},
+    {"csg", &makeCsgs},
 };
 
 } // namespace

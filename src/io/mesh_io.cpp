@@ -2,8 +2,10 @@
 #include "io/mesh_io.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
+#include <map>
 
 #include "core/error.h"
 
@@ -62,6 +64,34 @@ void validateMesh(TriangleMesh& mesh, const std::string& file) {
     if (mesh.triangles.empty())
         throw InputError(file, "", "no triangles (" + std::to_string(mesh.droppedDegenerate) +
                                        " zero-area triangles dropped)");
+}
+
+std::string closedSurfaceDefect(const TriangleMesh& mesh) {
+    std::map<std::array<float, 3>, uint32_t> welded;
+    std::vector<uint32_t> weldedIndex(mesh.positions.size());
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+        const glm::vec3& p = mesh.positions[i];
+        weldedIndex[i] = welded.emplace(std::array<float, 3>{p.x, p.y, p.z}, uint32_t(welded.size())).first->second;
+    }
+    std::map<std::pair<uint32_t, uint32_t>, int> edges;  // directed edge -> uses minus reverse uses
+    for (const glm::uvec3& tri : mesh.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t a = weldedIndex[tri[k]], b = weldedIndex[tri[(k + 1) % 3]];
+            if (a < b) ++edges[{a, b}];
+            else --edges[{b, a}];
+        }
+    for (const auto& [edge, balance] : edges) {
+        if (balance == 0) continue;
+        std::vector<glm::vec3> corner(welded.size());
+        for (const auto& [p, index] : welded) corner[index] = {p[0], p[1], p[2]};
+        auto point = [&](uint32_t v) {
+            const glm::vec3& p = corner[v];
+            return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
+        };
+        return "the surface is not closed: the edge " + point(edge.first) + " - " + point(edge.second) +
+               " is not shared by two triangles of opposite winding";
+    }
+    return {};
 }
 
 } // namespace wideray

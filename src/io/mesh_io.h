@@ -19,4 +19,8 @@ TriangleMesh loadGltf(const std::filesystem::path& path);
 /// Removes zero-area triangles (and counts them); checks indices and coordinates. Shared by every loader.
 void validateMesh(TriangleMesh& mesh, const std::string& file);
 
+/// Empty when the mesh bounds a solid: vertices welded by position, every edge is used once in each
+/// direction (a closed, consistently oriented surface). Otherwise what is wrong, naming an edge.
+std::string closedSurfaceDefect(const TriangleMesh& mesh);
+
 } // namespace wideray

@@ -583,14 +583,17 @@ private:
     using ObjectParser = void (SceneReader::*)(const Node&);
     static std::span<const std::pair<const char*, ObjectParser>> objectTypes() {
         static constexpr std::pair<const char*, ObjectParser> kTypes[] = {
-            {"mesh", &SceneReader::readMeshObject},           {"instance", &SceneReader::readInstanceObject},
-            {"generated", &SceneReader::readGeneratedObject}, {"triangles", &SceneReader::readTrianglesObject},
+            {"mesh", &SceneReader::readPlaced<&SceneReader::meshFileObject>},
+            {"instance", &SceneReader::readPlaced<&SceneReader::namedMeshObject>},
+            {"generated", &SceneReader::readPlaced<&SceneReader::generatedObject>},
+            {"triangles", &SceneReader::readPlaced<&SceneReader::trianglesObject>},
             {"sphere", &SceneReader::readSphereObject},
             {"ellipsoid", &SceneReader::readAnalyticObject}, {"cylinder", &SceneReader::readAnalyticObject},
             {"cone", &SceneReader::readAnalyticObject}, {"paraboloid", &SceneReader::readAnalyticObject},
             {"hyperboloid", &SceneReader::readAnalyticObject}, {"quadric", &SceneReader::readAnalyticObject},
             {"torus", &SceneReader::readAnalyticObject}, {"blob", &SceneReader::readAnalyticObject},
             {"heightfield", &SceneReader::readHeightFieldObject},
+            {"csg", &SceneReader::readCsgObject},
         };
         return kTypes;
     }
@@ -608,14 +611,27 @@ private:
         fail(n["type"].path, "unknown object type \"" + type + "\"" + (hint.empty() ? " (expected " + joined(types) + ")" : hint));
     }
 
-    void readMeshObject(const Node& n) {
-        checkKeys(n, {"type", "file", "material", "transform"});
-        require(n, "file");
-        const uint32_t mesh = loadMeshFile(n["file"], std::nullopt);
-        addInstance(mesh, n);
+    /// The mesh types: each gives the instance that places its mesh.
+    using MeshObjectParser = MeshInstance (SceneReader::*)(const Node&);
+    static std::span<const std::pair<const char*, MeshObjectParser>> meshObjectTypes() {
+        static constexpr std::pair<const char*, MeshObjectParser> kTypes[] = {
+            {"mesh", &SceneReader::meshFileObject}, {"instance", &SceneReader::namedMeshObject},
+            {"generated", &SceneReader::generatedObject}, {"triangles", &SceneReader::trianglesObject}};
+        return kTypes;
     }
 
-    void readInstanceObject(const Node& n) {
+    template <MeshObjectParser parse>
+    void readPlaced(const Node& n) {
+        scene_.instances.push_back((this->*parse)(n));
+    }
+
+    MeshInstance meshFileObject(const Node& n) {
+        checkKeys(n, {"type", "file", "material", "transform"});
+        require(n, "file");
+        return instanceOf(loadMeshFile(n["file"], std::nullopt), n);
+    }
+
+    MeshInstance namedMeshObject(const Node& n) {
         checkKeys(n, {"type", "mesh", "material", "transform"});
         require(n, "mesh");
         const Node name = n["mesh"];
@@ -625,44 +641,50 @@ private:
             for (const auto& [meshName, index] : meshNamed_) names.push_back(meshName);
             fail(name.path, "unknown mesh \"" + string(name) + "\"" + suggestion(string(name), names));
         }
-        addInstance(it->second, n);
+        return instanceOf(it->second, n);
     }
 
-    void readGeneratedObject(const Node& n) {
+    MeshInstance generatedObject(const Node& n) {
         require(n, "shape");
         const std::string shape = shapeName(n["shape"]);
         std::vector<std::string> keys = shapeKeys(shape);
         keys.insert(keys.end(), {"type", "shape", "material", "transform"});
         checkKeys(n, keys);
-        addOwnMesh(generateShape(shape, n), n);
+        return ownMesh(generateShape(shape, n), n);
     }
 
-    void readTrianglesObject(const Node& n) {
+    MeshInstance trianglesObject(const Node& n) {
         checkKeys(n, {"type", "vertices", "indices", "normals", "uvs", "material", "face_materials", "transform"});
         if (n.has("material") && n.has("face_materials"))
             fail(n.path, "\"material\" and \"face_materials\" cannot be combined");
-        addOwnMesh(inlineTriangles(n), n);
+        return ownMesh(inlineTriangles(n), n);
     }
 
     void readSphereObject(const Node& n) {
-        checkKeys(n, {"type", "center", "radius", "material", "transform"});
-        require(n, "center");
-        require(n, "radius");
-        Sphere s{vec3(n["center"]), positive(n["radius"]), 0};
-        s.material = n.has("material") ? materialNamed(n["material"]) : defaultMaterial();
+        const Sphere s = sphere(n);
         const glm::mat4 m = optionalTransform(n);
         if (isSimilarity(m)) {
             // A sphere stays a sphere under rotation, uniform scale and translation.
-            s.center = glm::vec3(m * glm::vec4(s.center, 1.0f));
-            s.radius *= glm::length(glm::vec3(m[0]));
-            scene_.spheres.push_back(s);
+            scene_.spheres.push_back({glm::vec3(m * glm::vec4(s.center, 1.0f)), s.radius * glm::length(glm::vec3(m[0])), s.material});
             return;
         }
-        // Any other transform makes it an ellipsoid: the unit sphere, scaled, moved, transformed.
+        // Any other transform makes it an ellipsoid.
+        scene_.analytics.push_back(sphereEllipsoid(s, m));
+    }
+
+    Sphere sphere(const Node& n) {
+        checkKeys(n, {"type", "center", "radius", "material", "transform"});
+        require(n, "center");
+        require(n, "radius");
+        return {vec3(n["center"]), positive(n["radius"]), n.has("material") ? materialNamed(n["material"]) : defaultMaterial()};
+    }
+
+    /// The unit sphere, scaled, moved, transformed.
+    static AnalyticObject sphereEllipsoid(const Sphere& s, const glm::mat4& m) {
         AnalyticObject e;
         e.transform = m * glm::translate(glm::mat4(1.0f), s.center) * glm::scale(glm::mat4(1.0f), glm::vec3(s.radius));
         e.material = s.material;
-        scene_.analytics.push_back(e);
+        return e;
     }
 
     static bool isSimilarity(const glm::mat4& m) {
@@ -673,8 +695,10 @@ private:
                std::abs(glm::dot(x, z)) <= tolerance;
     }
 
+    void readAnalyticObject(const Node& n) { scene_.analytics.push_back(analyticObject(n)); }
+
     /// An analytic primitive: its canonical shape sized by its own keys, then placed by its transform.
-    void readAnalyticObject(const Node& n) {
+    AnalyticObject analyticObject(const Node& n) {
         const std::string type = string(n["type"]);
         AnalyticObject o;
         for (const auto& [name, shape] : kAnalyticShapes)
@@ -746,19 +770,94 @@ private:
         }
         o.transform = optionalTransform(n) * local;
         o.material = n.has("material") ? materialNamed(n["material"]) : defaultMaterial();
-        scene_.analytics.push_back(o);
+        return o;
     }
 
-    void addInstance(uint32_t mesh, const Node& n) {
+    MeshInstance instanceOf(uint32_t mesh, const Node& n) const {
         const uint32_t material = n.has("material") ? materialNamed(n["material"]) : MeshInstance::kMeshMaterials;
-        scene_.instances.push_back({mesh, optionalTransform(n), material});
+        return {mesh, optionalTransform(n), material};
     }
 
     /// Generated and inline meshes belong to one object, so its material goes into the mesh itself.
-    void addOwnMesh(TriangleMesh mesh, const Node& n) {
+    MeshInstance ownMesh(TriangleMesh mesh, const Node& n) {
         if (mesh.faceMaterial.empty())
             mesh.faceMaterial.assign(mesh.triangles.size(), n.has("material") ? materialNamed(n["material"]) : defaultMaterial());
-        scene_.instances.push_back({addMesh(std::move(mesh)), optionalTransform(n), MeshInstance::kMeshMaterials});
+        return {addMesh(std::move(mesh)), optionalTransform(n), MeshInstance::kMeshMaterials};
+    }
+
+    // ---- CSG
+
+    void readCsgObject(const Node& n) {
+        CsgObject object;
+        csgOperation(n, glm::mat4(1.0f), std::nullopt, object);
+        scene_.csgs.push_back(std::move(object));
+    }
+
+    /// A "csg" node and, recursively, its operands; its transform and material apply to all of them
+    /// (an operand's own material wins). Returns the node's index.
+    uint32_t csgOperation(const Node& n, const glm::mat4& parent, std::optional<uint32_t> material, CsgObject& object) {
+        checkKeys(n, {"type", "operation", "operands", "material", "transform"});
+        require(n, "operation");
+        require(n, "operands");
+        const glm::mat4 transform = parent * optionalTransform(n);
+        if (n.has("material")) material = materialNamed(n["material"]);
+        const uint32_t index = uint32_t(object.nodes.size());
+        object.nodes.push_back({CsgNode::Kind::Operation, named(n["operation"], kCsgOperations, "CSG operation"), 0, {}});
+        const Node operands = n["operands"];
+        expectArray(operands);
+        if (operands.value.size() < 2) fail(operands.path, "a CSG operation needs at least two operands");
+        if (operands.value.size() > 1024) fail(operands.path, "at most 1024 operands per CSG operation");
+        for (size_t k = 0; k < operands.value.size(); ++k) {
+            const uint32_t operand = csgOperand(operands[k], transform, material, object);
+            object.nodes[index].operands.push_back(operand);
+        }
+        return index;
+    }
+
+    uint32_t csgOperand(const Node& n, const glm::mat4& parent, std::optional<uint32_t> material, CsgObject& object) {
+        expectObject(n);
+        require(n, "type");
+        const std::string type = string(n["type"]);
+        if (type == "csg") {
+            if (++csgDepth_ > 64) fail(n.path, "CSG nesting deeper than 64 levels");
+            const uint32_t index = csgOperation(n, parent, material, object);
+            --csgDepth_;
+            return index;
+        }
+        for (const auto& [name, parse] : meshObjectTypes()) {
+            if (type != name) continue;
+            MeshInstance placed = (this->*parse)(n);
+            placed.transform = parent * placed.transform;
+            if (!n.has("material") && material) placed.material = *material;
+            const TriangleMesh& mesh = scene_.meshes[placed.mesh];
+            if (placed.material == MeshInstance::kMeshMaterials && mesh.faceMaterial.empty()) placed.material = defaultMaterial();
+            if (const std::string defect = closedSurfaceDefect(mesh); !defect.empty())
+                fail(n.path, "a CSG operand must be a solid: " + defect);
+            object.meshes.push_back(placed);
+            object.nodes.push_back({CsgNode::Kind::Mesh, CsgOperation::Union, uint32_t(object.meshes.size() - 1), {}});
+            return uint32_t(object.nodes.size() - 1);
+        }
+        AnalyticObject solid;
+        if (type == "sphere") {
+            solid = sphereEllipsoid(sphere(n), optionalTransform(n));
+        } else if (std::any_of(kAnalyticShapes.begin(), kAnalyticShapes.end(), [&](const auto& s) { return s.first == type; })) {
+            solid = analyticObject(n);
+            if (solid.shape == AnalyticShape::Quadric)
+                fail(n["type"].path, "a general quadric is not a closed solid and cannot be a CSG operand");
+            if (!solid.capped) fail(n["capped"].path, "a CSG operand must be closed: an uncapped quadric is not");
+        } else {
+            std::vector<std::string> types = {"csg", "sphere"};
+            for (const auto& [name, parse] : meshObjectTypes()) types.push_back(name);
+            for (const auto& [name, shape] : kAnalyticShapes)
+                if (shape != AnalyticShape::Quadric) types.push_back(name);
+            const std::string hint = suggestion(type, types);
+            fail(n["type"].path, "\"" + type + "\" cannot be a CSG operand" + (hint.empty() ? " (expected " + joined(types) + ")" : hint));
+        }
+        solid.transform = parent * solid.transform;
+        if (!n.has("material") && material) solid.material = *material;
+        object.analytics.push_back(solid);
+        object.nodes.push_back({CsgNode::Kind::Analytic, CsgOperation::Union, uint32_t(object.analytics.size() - 1), {}});
+        return uint32_t(object.nodes.size() - 1);
     }
 
     std::filesystem::path folder_;
@@ -767,6 +866,7 @@ private:
     std::map<std::string, uint32_t> meshNamed_;
     std::map<std::filesystem::path, uint32_t> meshOfFile_;
     std::set<std::string> materialPrefixes_;
+    int csgDepth_ = 0;
     std::map<std::pair<std::filesystem::path, bool>, std::shared_ptr<const Image>> textureImages_;
 };
 

@@ -19,6 +19,9 @@ inline const std::vector<std::pair<std::string, AnalyticShape>> kAnalyticShapes 
     {"cone", AnalyticShape::Cone},           {"paraboloid", AnalyticShape::Paraboloid},
     {"hyperboloid", AnalyticShape::Hyperboloid}, {"quadric", AnalyticShape::Quadric},
     {"torus", AnalyticShape::Torus}, {"blob", AnalyticShape::Blob}};
+inline const std::vector<std::pair<std::string, CsgOperation>> kCsgOperations = {
+    {"union", CsgOperation::Union}, {"intersection", CsgOperation::Intersection},
+    {"difference", CsgOperation::Difference}, {"xor", CsgOperation::Xor}};
 inline const std::vector<std::string> kMaterialTypes = {"diffuse", "plastic", "mirror", "conductor", "dielectric"};
 inline const std::vector<std::pair<std::string, TextureType>> kTextureTypes = {
     {"checker", TextureType::Checker}, {"noise", TextureType::Noise},   {"fbm", TextureType::Fbm},

@@ -87,6 +87,45 @@ Json matrixJson(const glm::mat4& m) {
     return j;
 }
 
+Json analyticJson(const AnalyticObject& a, const std::vector<Material>& materials) {
+    const bool twoSheets = a.shape == AnalyticShape::TwoSheetHyperboloid;
+    Json object = {{"type", nameOf(kAnalyticShapes, twoSheets ? AnalyticShape::Hyperboloid : a.shape)},
+                   {"transform", {{"matrix", matrixJson(a.transform)}}},
+                   {"material", materials.at(a.material).name}};
+    if (twoSheets) object["sheets"] = 2;
+    if (a.shape == AnalyticShape::Quadric) object["coefficients"] = a.coefficients;
+    if (a.shape == AnalyticShape::Blob) {
+        object["threshold"] = a.threshold;
+        Json& balls = object["balls"] = Json::array();
+        for (const BlobBall& b : a.balls) balls.push_back({{"center", array(b.center)}, {"radius", b.radius}, {"strength", b.strength}});
+    }
+    if (a.shape == AnalyticShape::Torus) {
+        object["major_radius"] = a.majorRadius;
+        object["minor_radius"] = a.minorRadius;
+    }
+    const bool hasCaps = a.shape != AnalyticShape::Ellipsoid && a.shape != AnalyticShape::Quadric &&
+                         a.shape != AnalyticShape::Torus && a.shape != AnalyticShape::Blob;
+    if (hasCaps && !a.capped) object["capped"] = false;
+    return object;
+}
+
+Json instanceJson(const MeshInstance& instance, const std::vector<Material>& materials) {
+    Json object = {{"type", "instance"}, {"mesh", "mesh" + std::to_string(instance.mesh)}};
+    if (instance.material != MeshInstance::kMeshMaterials) object["material"] = materials.at(instance.material).name;
+    object["transform"] = {{"matrix", matrixJson(instance.transform)}};
+    return object;
+}
+
+/// A CSG node with its operands, each solid placed by its own (composed) transform.
+Json csgJson(const CsgObject& csg, uint32_t index, const std::vector<Material>& materials) {
+    const CsgNode& node = csg.nodes[index];
+    if (node.kind == CsgNode::Kind::Analytic) return analyticJson(csg.analytics[node.solid], materials);
+    if (node.kind == CsgNode::Kind::Mesh) return instanceJson(csg.meshes[node.solid], materials);
+    Json operands = Json::array();
+    for (uint32_t operand : node.operands) operands.push_back(csgJson(csg, operand, materials));
+    return {{"type", "csg"}, {"operation", nameOf(kCsgOperations, node.operation)}, {"operands", std::move(operands)}};
+}
+
 } // namespace
 
 std::string writeScene(const Scene& scene) {
@@ -114,12 +153,7 @@ std::string writeScene(const Scene& scene) {
         meshes["mesh" + std::to_string(i)] = meshJson(scene.meshes[i], scene.materials);
 
     Json& objects = root["objects"] = Json::array();
-    for (const MeshInstance& instance : scene.instances) {
-        Json object = {{"type", "instance"}, {"mesh", "mesh" + std::to_string(instance.mesh)}};
-        if (instance.material != MeshInstance::kMeshMaterials) object["material"] = scene.materials.at(instance.material).name;
-        object["transform"] = {{"matrix", matrixJson(instance.transform)}};
-        objects.push_back(std::move(object));
-    }
+    for (const MeshInstance& instance : scene.instances) objects.push_back(instanceJson(instance, scene.materials));
     for (const Sphere& s : scene.spheres)
         objects.push_back({{"type", "sphere"}, {"center", array(s.center)}, {"radius", s.radius},
                            {"material", scene.materials.at(s.material).name}});
@@ -131,28 +165,8 @@ std::string writeScene(const Scene& scene) {
                            {"transform", {{"matrix", matrixJson(f.transform)}}},
                            {"material", scene.materials.at(f.material).name}});
     }
-    for (const AnalyticObject& a : scene.analytics) {
-        const bool twoSheets = a.shape == AnalyticShape::TwoSheetHyperboloid;
-        Json object = {{"type", nameOf(kAnalyticShapes, twoSheets ? AnalyticShape::Hyperboloid : a.shape)},
-                       {"transform", {{"matrix", matrixJson(a.transform)}}},
-                       {"material", scene.materials.at(a.material).name}};
-        if (twoSheets) object["sheets"] = 2;
-        if (a.shape == AnalyticShape::Quadric) object["coefficients"] = a.coefficients;
-        if (a.shape == AnalyticShape::Blob) {
-            object["threshold"] = a.threshold;
-            Json& balls = object["balls"] = Json::array();
-            for (const BlobBall& b : a.balls)
-                balls.push_back({{"center", array(b.center)}, {"radius", b.radius}, {"strength", b.strength}});
-        }
-        if (a.shape == AnalyticShape::Torus) {
-            object["major_radius"] = a.majorRadius;
-            object["minor_radius"] = a.minorRadius;
-        }
-        const bool hasCaps = a.shape != AnalyticShape::Ellipsoid && a.shape != AnalyticShape::Quadric &&
-                             a.shape != AnalyticShape::Torus && a.shape != AnalyticShape::Blob;
-        if (hasCaps && !a.capped) object["capped"] = false;
-        objects.push_back(std::move(object));
-    }
+    for (const AnalyticObject& a : scene.analytics) objects.push_back(analyticJson(a, scene.materials));
+    for (const CsgObject& csg : scene.csgs) objects.push_back(csgJson(csg, 0, scene.materials));
     return root.dump(2) + "\n";
 }
 

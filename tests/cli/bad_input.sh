@@ -55,6 +55,9 @@ printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty floa
 printf '{"objects": [{"type": "mesh", "file": "nan.ply"}], %s}' "$light" > "$work/nan_coordinates.json"
 expect_error nan_coordinates "nan.ply.*(NaN|finite|nan)"
 
+printf '{"objects": [{"type": "csg", "operation": "difference", "operands": [{"type": "generated", "shape": "quad"}, %s]}], %s}' "$good_object" "$light" > "$work/open_csg_operand.json"
+expect_error open_csg_operand "operands\[0\].*not closed"
+
 printf '{"objects": [], %s}' "$light" > "$work/empty_scene.json"
 expect_error empty_scene "no objects"
 
@@ -87,6 +90,6 @@ for cmd in "" render info; do
   if ! "$wideray" $cmd --help >/dev/null; then echo "FAIL '$cmd --help'"; failures=$((failures + 1)); fi
 done
 
-passed=$(( 21 - failures ))
+passed=$(( 22 - failures ))
 echo "cli: $passed passed, $failures failed"
 [ $failures -eq 0 ]
