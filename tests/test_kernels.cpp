@@ -12,6 +12,8 @@
 #include "io/mesh_io.h"
 #include "accel/scene_accel.h"
 #include "kernels/kernel_registry.h"
+#include "geometry/triangle_geometry.h"
+#include "instanced_scene.h"
 #include "ray_sets.h"
 #include "test_data.h"
 
@@ -169,6 +171,24 @@ TEST(Kernels, MatchReferenceOnGeneratedMeshes) {
     scene.materials.push_back({});
     checkScene<4>(scene, 96);
     checkScene<8>(scene, 96);
+}
+
+TEST(Kernels, MatchReferenceThroughTwoLevelInstances) {
+    // The instance leaves trace their meshes with the ISA's single-ray kernel whatever kernel reached
+    // them: every kernel, packets and streams included, returns the reference's hits bit for bit.
+    FlushToZeroScope ftz;
+    const Scene scene = testing::instancedScene();
+    auto geometry = std::make_shared<const SceneGeometry>(scene, Instancing::TwoLevel);
+    ASSERT_NE(geometry->instances(), nullptr);
+    const TriangleMesh flattened = flattenTriangles(scene);
+    const std::vector<Ray> primary = primaryRays(scene, 96, 96), random = testing::randomRays(flattened, 4096, 3);
+    auto check = [&](const auto& accel) {
+        expectAllKernelsMatchReference(accel, primary, "instances, primary");
+        expectAllKernelsMatchReference(accel, shadowRays(accel, primary, scene.lights[0].position), "instances, shadow");
+        expectAllKernelsMatchReference(accel, random, "instances, random");
+    };
+    check(SceneAccel<4>(geometry));
+    check(SceneAccel<8>(geometry));
 }
 
 class SharedMeshKernels : public ::testing::TestWithParam<const char*> {};

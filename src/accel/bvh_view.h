@@ -5,10 +5,35 @@
 
 #include "accel/triangle_block.h"
 #include "accel/wide_bvh.h"
+#include "core/ray.h"
 
 namespace wideray {
 
 class UserGeometry;
+template <int N>
+struct SceneView;
+
+/// A two-level instance as the kernels see it: the ray is taken into the object space of its mesh by
+/// objectFromWorld (row-major 3x4, in double) and traced through the mesh's own BVH.
+struct InstanceRef {
+    double objectFromWorld[12];
+    uint32_t mesh;       ///< index into InstanceTable's mesh views
+    uint32_t firstPrim;  ///< the primId of its mesh's first triangle (geometry/instance_geometry.h)
+};
+
+/// The instances of a scene's BVH: its user leaves' primitives of geometry geomId are instances.
+struct InstanceTable {
+    uint32_t geomId = kInvalidId;
+    const InstanceRef* instances = nullptr;
+    const SceneView<4>* meshes4 = nullptr;  ///< one BVH per instanced mesh, of the scene BVH's width
+    const SceneView<8>* meshes8 = nullptr;
+
+    template <int N>
+    const SceneView<N>* meshes() const {
+        if constexpr (N == 4) return meshes4;
+        else return meshes8;
+    }
+};
 
 /// A user primitive: primitive primId of geometry geomId.
 struct PrimRef {
@@ -17,11 +42,12 @@ struct PrimRef {
 };
 
 /// The items the leaves of a scene's BVH point to: triangle blocks (geomId 0), and user primitives
-/// for leaves with NodeRef::kUserFlag.
+/// (and instances) for leaves with NodeRef::kUserFlag.
 struct SceneLeaves {
     const TriangleBlock<kBlockSize>* blocks = nullptr;
     const PrimRef* prims = nullptr;
-    const UserGeometry* const* geometries = nullptr;  ///< indexed by geomId
+    const UserGeometry* const* geometries = nullptr;  ///< indexed by geomId; null for triangles and instances
+    const InstanceTable* instances = nullptr;         ///< null without two-level instances
 };
 
 /// One N-wide BVH over all of a scene's primitives.

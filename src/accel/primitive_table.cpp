@@ -2,11 +2,16 @@
 
 #include <stdexcept>
 
+#include "core/error.h"
+
 namespace wideray {
 
 PrimitiveTable::PrimitiveTable(const SceneGeometry& geometry) {
     for (uint32_t g = 0; g < geometry.size(); ++g) {
         const Geometry& item = geometry[g];
+        if (item.instances())
+            throw InputError("--accel", "", "the course's structures are single-level: trace two-level instances with bvh4, "
+                                            "bvh8 or Embree, or flatten them (--instancing flatten)");
         geometries_.push_back(item.user());
         if (const TriangleMesh* mesh = item.triangles()) {
             if (g != 0) throw std::logic_error("PrimitiveTable: triangle meshes must be geometry 0");

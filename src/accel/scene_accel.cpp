@@ -160,6 +160,7 @@ SceneAccel<N>::SceneAccel(std::shared_ptr<const SceneGeometry> geometry, const B
         const Geometry& item = (*geometry_)[g];
         userGeometries_.push_back(item.user());
         if (item.triangles() && g != 0) throw std::logic_error("SceneAccel: triangle meshes must be geometry 0");
+        if (const InstanceGeometry* instances = item.instances()) buildInstances(g, *instances, config);
     }
     WideBvh<N> triangles, user;
     if (geometry_->size() > 0 && (*geometry_)[0].triangles()) triangles = buildTrianglesAtBest(*(*geometry_)[0].triangles(), config);
@@ -204,14 +205,39 @@ WideBvh<N> SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuil
 }
 
 template <int N>
+void SceneAccel<N>::buildInstances(uint32_t geomId, const InstanceGeometry& instances, const BvhBuildConfig& config) {
+    for (const auto& mesh : instances.meshes()) {
+        meshAccels_.push_back(std::make_unique<SceneAccel<N>>(mesh, config));
+        meshViews_.push_back(meshAccels_.back()->view());
+        timings_.binarySeconds += meshAccels_.back()->timings().binarySeconds;
+        timings_.collapseSeconds += meshAccels_.back()->timings().collapseSeconds;
+    }
+    for (const InstanceGeometry::Placement& p : instances.placements()) {
+        const glm::dmat4 objectFromWorld = glm::inverse(glm::dmat4(p.transform));
+        InstanceRef ref{{}, p.mesh, p.firstPrim};
+        for (int row = 0; row < 3; ++row)
+            for (int column = 0; column < 4; ++column) ref.objectFromWorld[4 * row + column] = objectFromWorld[column][row];
+        instanceRefs_.push_back(ref);
+    }
+    instanceTable_.geomId = geomId;
+    instanceTable_.instances = instanceRefs_.data();
+    if constexpr (N == 4) instanceTable_.meshes4 = meshViews_.data();
+    else instanceTable_.meshes8 = meshViews_.data();
+}
+
+template <int N>
 WideBvh<N> SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
+    // User primitives and instances, each bounded by its geometry.
     std::vector<BuildRef> buildRefs;
     std::vector<PrimRef> refs;
-    for (uint32_t g = 0; g < userGeometries_.size(); ++g)
-        for (uint32_t p = 0; userGeometries_[g] && p < userGeometries_[g]->primitiveCount(); ++p) {
-            buildRefs.push_back(makeBuildRef(userGeometries_[g]->primitiveBounds(p), uint32_t(refs.size())));
+    for (uint32_t g = 0; g < geometry_->size(); ++g) {
+        const Geometry& item = (*geometry_)[g];
+        if (!item.user() && !item.instances()) continue;
+        for (uint32_t p = 0; p < item.primitiveCount(); ++p) {
+            buildRefs.push_back(makeBuildRef(item.primitiveBounds(p), uint32_t(refs.size())));
             refs.push_back({g, p});
         }
+    }
     if (refs.empty()) return {};
     if (refs.size() >= NodeRef::kFirstMask) throw std::length_error("SceneAccel: too many user primitives");
     auto start = std::chrono::steady_clock::now();
@@ -227,20 +253,32 @@ WideBvh<N> SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
 
 template <int N>
 SceneView<N> SceneAccel<N>::view() const {
-    return {bvh_.nodes.data(), bvh_.root, {blocks_.data(), prims_.data(), userGeometries_.data()}};
+    return {bvh_.nodes.data(), bvh_.root,
+            {blocks_.data(), prims_.data(), userGeometries_.data(), instanceRefs_.empty() ? nullptr : &instanceTable_}};
 }
 
 template <int N>
 size_t SceneAccel<N>::triangleReferences() const {
     size_t references = 0;
     for (const TriangleBlock<kBlockSize>& block : blocks_) references += size_t(block.count());
+    for (const auto& mesh : meshAccels_) references += mesh->triangleReferences();
     return references;
 }
 
 template <int N>
 size_t SceneAccel<N>::bytes() const {
-    return bvh_.nodes.size() * sizeof(WideNode<N>) + blocks_.size() * sizeof(TriangleBlock<kBlockSize>) +
-           prims_.size() * sizeof(PrimRef);
+    size_t bytes = bvh_.nodes.size() * sizeof(WideNode<N>) + blocks_.size() * sizeof(TriangleBlock<kBlockSize>) +
+                   prims_.size() * sizeof(PrimRef) + instanceRefs_.size() * sizeof(InstanceRef);
+    for (const auto& mesh : meshAccels_) bytes += mesh->bytes();
+    return bytes;
+}
+
+template <int N>
+size_t SceneAccel<N>::flattenedBytes() const {
+    size_t bytes = this->bytes() - instanceRefs_.size() * sizeof(InstanceRef);
+    for (const auto& mesh : meshAccels_) bytes -= mesh->bytes();
+    for (const InstanceRef& instance : instanceRefs_) bytes += meshAccels_[instance.mesh]->bytes();
+    return bytes;
 }
 
 template class SceneAccel<4>;

@@ -60,6 +60,8 @@ EmbreeStructure::EmbreeStructure(std::shared_ptr<const SceneGeometry> geometry, 
         if (const TriangleMesh* mesh = g[geomId].triangles()) {
             if (!mesh->triangles.empty()) attachTriangles(device_.get(), scene_.get(), *mesh, geomId);
             check("triangle geometry");
+        } else if (const InstanceGeometry* instances = g[geomId].instances()) {
+            attachInstances(*instances, geomId);
         } else {
             attachUserGeometry(device_.get(), scene_.get(), *g[geomId].user(), geomId);
             check("user geometry");
@@ -68,6 +70,37 @@ EmbreeStructure::EmbreeStructure(std::shared_ptr<const SceneGeometry> geometry, 
     rtcCommitScene(scene_.get());
     check("rtcCommitScene");
     buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void EmbreeStructure::attachInstances(const InstanceGeometry& instances, uint32_t geomId) {
+    for (const auto& mesh : instances.meshes()) {
+        meshScenes_.emplace_back(rtcNewScene(device_.get()));
+        rtcSetSceneBuildQuality(meshScenes_.back().get(), quality_);
+        attachTriangles(device_.get(), meshScenes_.back().get(), *(*mesh)[0].triangles(), 0);
+        rtcCommitScene(meshScenes_.back().get());
+        check("instanced mesh");
+    }
+    instanceGeomId_ = geomId;
+    firstInstanceId_ = geometry().size();
+    for (const InstanceGeometry::Placement& p : instances.placements()) {
+        RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(g, meshScenes_[p.mesh].get());
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &p.transform[0][0]);
+        rtcCommitGeometry(g);
+        rtcAttachGeometryByID(scene_.get(), g, firstInstanceId_ + uint32_t(instanceFirstPrim_.size()));
+        rtcReleaseGeometry(g);
+        instanceFirstPrim_.push_back(p.firstPrim);
+    }
+    check("instances");
+}
+
+void EmbreeStructure::fromInstanceHits(std::span<Hit> hits) const {
+    if (instanceFirstPrim_.empty()) return;
+    for (Hit& hit : hits)
+        if (hit.valid() && hit.geomId >= firstInstanceId_) {
+            hit.primId += instanceFirstPrim_[hit.geomId - firstInstanceId_];
+            hit.geomId = instanceGeomId_;
+        }
 }
 
 void EmbreeStructure::check(const char* step) const {

@@ -10,10 +10,15 @@
 // callbacks call ours, with our tie rule (equal t: smaller (geomId, primId) wins) applied against
 // Embree's hit. Embree's triangle test is not watertight and does not order equal-t hits, so answers
 // differ from ours at shared edges and vertices (tests/test_embree_crosscheck.cpp counts these).
+// Two-level instances become one Embree scene per instanced mesh, placed by an
+// RTC_GEOMETRY_TYPE_INSTANCE geometry per instance (geomIDs after ours), whose hits are given our
+// ids (the instance geometry's geomId, the flattened primId) by fromInstanceHits.
 #include <algorithm>
 #include <atomic>
 #include <memory>
+#include <span>
 #include <string>
+#include <vector>
 
 #include <embree3/rtcore.h>
 
@@ -42,6 +47,9 @@ public:
     /// incoherent ones; or one entry point by name (rtcIntersect1, 4, 8, 16, rtcIntersect1M).
     std::unique_ptr<Tracer> tracer(const KernelChoice& choice) const override;
 
+    /// Hits of instances (geomId: the instance's geomID in Embree's scene) with our geomId and primId.
+    void fromInstanceHits(std::span<Hit> hits) const;
+
 private:
     struct ReleaseDevice {
         void operator()(RTCDevice d) const { rtcReleaseDevice(d); }
@@ -51,11 +59,15 @@ private:
     };
 
     void check(const char* step) const;
+    void attachInstances(const InstanceGeometry& instances, uint32_t geomId);
 
     std::atomic<int64_t> bytes_{0};
     std::string lastError_;
     std::unique_ptr<RTCDeviceTy, ReleaseDevice> device_;
     std::unique_ptr<RTCSceneTy, ReleaseScene> scene_;
+    std::vector<std::unique_ptr<RTCSceneTy, ReleaseScene>> meshScenes_;  ///< one per instanced mesh
+    uint32_t instanceGeomId_ = kInvalidId, firstInstanceId_ = 0;
+    std::vector<uint32_t> instanceFirstPrim_;
     RTCBuildQuality quality_;
     double buildSeconds_ = 0;
 };

@@ -39,10 +39,14 @@ void toEmbree(const Ray& r, RTCRay& e) {
 
 void clearHit(RTCHit& h) { h.geomID = h.primID = h.instID[0] = RTC_INVALID_GEOMETRY_ID; }
 
-Hit fromEmbree(const RTCRayHit& e) {
-    if (e.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
-    return {e.ray.tfar, e.hit.u, e.hit.v, e.hit.primID, e.hit.geomID};
+/// An instance's hit carries the instance's geomID in the top-level scene, which
+/// EmbreeStructure::fromInstanceHits turns into ours.
+Hit embreeHit(float t, float u, float v, unsigned primID, unsigned geomID, unsigned instID) {
+    if (geomID == RTC_INVALID_GEOMETRY_ID) return {};
+    return {t, u, v, primID, instID != RTC_INVALID_GEOMETRY_ID ? instID : geomID};
 }
+
+Hit fromEmbree(const RTCRayHit& e) { return embreeHit(e.ray.tfar, e.hit.u, e.hit.v, e.hit.primID, e.hit.geomID, e.hit.instID[0]); }
 
 bool isOccluded(float tfar) { return tfar == -std::numeric_limits<float>::infinity(); }
 
@@ -89,9 +93,7 @@ void intersectPackets(RTCScene scene, RTCIntersectContext& context, std::span<co
         for (int i = 0; i < K; ++i) e.hit.geomID[i] = e.hit.primID[i] = e.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
         Packet<K>::intersect(valid, scene, &context, &e);
         for (size_t i = 0; i < K && first + i < rays.size(); ++i)
-            hits[first + i] = e.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
-                                  ? Hit{}
-                                  : Hit{e.ray.tfar[i], e.hit.u[i], e.hit.v[i], e.hit.primID[i], e.hit.geomID[i]};
+            hits[first + i] = embreeHit(e.ray.tfar[i], e.hit.u[i], e.hit.v[i], e.hit.primID[i], e.hit.geomID[i], e.hit.instID[0][i]);
     }
 }
 
@@ -220,6 +222,7 @@ void EmbreeTracer::intersect(std::span<const Ray> rays, std::span<Hit> hits, Coh
     case EmbreeKernel::Packet16: intersectPackets<16>(scene, context, rays, hits); break;
     case EmbreeKernel::Stream1M: intersectStream(scene, context, rays, hits); break;
     }
+    structure_->fromInstanceHits(hits);
     if (costs) std::fill(costs, costs + rays.size(), TraversalCost{});
 }
 

@@ -41,7 +41,18 @@ std::string WideBvhStructure<N>::summary() const {
                        "bytes/triangle, build {:.1f} ms (binned SAH {:.1f} ms + collapse {:.1f} ms)",
                        N, qualityName(), s.innerNodes, s.childrenPerNode(), N, s.leaves, blocks, kBlockSize, 100.0 * blockFill,
                        triangles ? double(references) / double(triangles) : 0.0, s.depth, s.sahCost, bytesPerTriangle, t.totalSeconds() * 1e3, t.binarySeconds * 1e3,
-                       t.collapseSeconds * 1e3);
+                       t.collapseSeconds * 1e3) +
+           instancingSummary();
+}
+
+template <int N>
+std::string WideBvhStructure<N>::instancingSummary() const {
+    const InstanceGeometry* instances = geometry().instances();
+    if (!instances) return "";
+    return fmt::format("; two-level: {} instances of {} meshes, {} instanced triangles, {:.1f} MB against about {:.1f} "
+                       "MB flattened (each instance a copy of its mesh's structure)",
+                       instances->primitiveCount(), instances->meshes().size(), geometry().instancedTriangleCount(),
+                       double(bytes()) / 1e6, double(accel_.flattenedBytes()) / 1e6);
 }
 
 template <int N>

@@ -26,6 +26,9 @@ public:
     std::unique_ptr<Tracer> tracer(const KernelChoice& choice) const override;
 
 private:
+    /// Memory of two-level instances against the flattened form; empty without instances.
+    std::string instancingSummary() const;
+
     BuildQuality quality_;
     SceneAccel<N> accel_;
 };

@@ -46,6 +46,7 @@ struct BenchArgs {
     bool counters = false;         ///< also count our kernels' work per ray
     /// Our structures besides BVH8 (whose kernels are always measured): bvh4 and the course's.
     std::vector<std::string> accels;
+    std::string instancing = "auto";
 };
 
 constexpr size_t kChunk = 4096;  // rays per task: sixteen 16x16 tiles
@@ -203,7 +204,8 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
               int threads) {
     auto [width, height] = parseSize(args.size);
     Scene scene = loadSceneOrMesh(input, width, height);
-    auto geometry = std::make_shared<const SceneGeometry>(scene);
+    // One geometry for every structure, so that all trace the same primitives.
+    auto geometry = std::make_shared<const SceneGeometry>(scene, instancingFor(args.instancing, args.accels));
     const std::string name = shortName(input);
     // A scene file is seen from its own camera (an interior view, say); a bare mesh is framed from outside.
     const std::string workload = isSceneFile(input) ? "scene" : "framed";
@@ -362,6 +364,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
         ->check(CLI::IsMember(accelNames()))
         ->delimiter(',');
     cmd->add_flag("--all-isas", args->allIsas, "Measure our kernels for every ISA this CPU has, not only the best");
+    addInstancingOption(*cmd, args->instancing);
     cmd->add_option("--json", args->json, "Write the results as JSON (fields: machine, results, builds)");
     cmd->callback([args, &exitCode] {
         FlushToZeroScope ftz;

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "backends/structure.h"
+#include "geometry/instance_geometry.h"
 
 namespace wideray::cli {
 
@@ -19,6 +20,7 @@ struct EngineOptions {
     int bvhWidth = 8;
     std::string quality = "fast";
     std::string shadowCache = "on";
+    std::string instancing = "auto";
 };
 
 void addEngineOptions(CLI::App& app, EngineOptions& options);
@@ -27,6 +29,11 @@ void addQualityOption(CLI::App& app, std::string& quality);
 /// The --accel choices (backends/accel_registry.h's rows) and their help, for one name or a list.
 std::vector<std::string> accelNames();
 std::string accelHelp(bool list);
+/// --instancing auto|flatten|two-level.
+void addInstancingOption(CLI::App& app, std::string& instancing);
+/// The instancing the option asks for, for structures `accels` (empty: the wide BVH): auto flattens
+/// for the course's structures, which are single-level; two-level with one of them is an error.
+Instancing instancingFor(const std::string& option, const std::vector<std::string>& accels);
 /// The kernels the options ask for.
 KernelChoice kernelChoice(const EngineOptions& options);
 

@@ -1,9 +1,11 @@
+#include <algorithm>
 #include <cstdio>
 
 #include <fmt/core.h>
 
 #include "backends/accel_registry.h"
 #include "cli/commands.h"
+#include "core/error.h"
 #include "kernels/kernel_registry.h"
 
 namespace wideray::cli {
@@ -39,6 +41,30 @@ void addEngineOptions(CLI::App& app, EngineOptions& options) {
         ->capture_default_str();
     addQualityOption(app, options.quality);
     app.add_option("--accel", options.accel, accelHelp(false))->check(CLI::IsMember(accelNames()));
+    addInstancingOption(app, options.instancing);
+}
+
+void addInstancingOption(CLI::App& app, std::string& instancing) {
+    app.add_option("--instancing", instancing,
+                   "Instances of a mesh: two-level (one BVH per mesh, a top-level BVH over the instances), flatten "
+                   "(every instance's triangles copied into one BVH) or auto (two-level where the copies would add "
+                   "65536 triangles or more; flattened for the course's structures)")
+        ->check(CLI::IsMember({"auto", "flatten", "two-level"}))
+        ->capture_default_str();
+}
+
+Instancing instancingFor(const std::string& option, const std::vector<std::string>& accels) {
+    const bool singleLevel = std::any_of(accels.begin(), accels.end(), [](const std::string& a) {
+        return !a.empty() && a != "bvh4" && a != "bvh8";
+    });
+    if (option == "flatten") return Instancing::Flatten;
+    if (option == "two-level") {
+        if (singleLevel)
+            throw InputError("--instancing", "", "the course's structures are single-level: two-level instances need "
+                                                 "--accel bvh4 or bvh8 (or --instancing auto, which flattens for them)");
+        return Instancing::TwoLevel;
+    }
+    return singleLevel ? Instancing::Flatten : Instancing::Auto;
 }
 
 std::vector<std::string> accelNames() {

@@ -22,11 +22,13 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
         ->check(CLI::IsMember({"sse42", "avx2", "avx512", "auto"}))
         ->capture_default_str();
     addQualityOption(*cmd, *quality);
+    auto instancing = std::make_shared<std::string>("auto");
+    addInstancingOption(*cmd, *instancing);
     auto accel = std::make_shared<std::vector<std::string>>();
     cmd->add_option("--accel", *accel, accelHelp(true) + " (default: bvh4,bvh8)")
         ->check(CLI::IsMember(accelNames()))
         ->delimiter(',');
-    cmd->callback([files, isa, quality, accel, &exitCode] {
+    cmd->callback([files, isa, quality, accel, instancing, &exitCode] {
         FlushToZeroScope ftz;
         Isa chosen = *isa == "auto" ? bestIsa() : *parseIsa(*isa);
         fmt::print("CPU: {}; detected ISA: {}; chosen ISA: {}{}\n", cpuModelName(), isaName(bestIsa()),
@@ -35,14 +37,15 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
         for (const std::string& file : *files) {
             try {
                 Scene scene = loadSceneOrMesh(file);
-                auto geometry = std::make_shared<const SceneGeometry>(scene);
+                const std::vector<std::string> accels = accel->empty() ? std::vector<std::string>{"bvh4", "bvh8"} : *accel;
+                auto geometry = std::make_shared<const SceneGeometry>(scene, instancingFor(*instancing, accels));
                 size_t dropped = 0;
                 for (const TriangleMesh& m : scene.meshes) dropped += m.droppedDegenerate;
                 fmt::print("{}: {} triangles ({} zero-area dropped), {} spheres, {} meshes, {} instances\n", file,
                            geometry->triangleCount(), dropped, scene.spheres.size(), scene.meshes.size(),
                            scene.instances.size());
                 const Backend& ours = findBackend("wideray");
-                for (const std::string& name : accel->empty() ? std::vector<std::string>{"bvh4", "bvh8"} : *accel) {
+                for (const std::string& name : accels) {
                     StructureOptions options;
                     options.accel = name;
                     options.quality = *quality;

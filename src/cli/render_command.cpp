@@ -83,7 +83,7 @@ void renderOne(const RenderArgs& args, const std::string& sceneFile) {
     for (const auto& [name, integrator] : kIntegrators)
         if (name == args.integrator) scene.render.integrator = integrator;
     auto start = Clock::now();
-    auto geometry = std::make_shared<const SceneGeometry>(scene);
+    auto geometry = std::make_shared<const SceneGeometry>(scene, instancingFor(args.engine.instancing, {args.engine.accel}));
     BackendTracer built = buildTracer(args, args.backend, geometry);
     double buildSeconds = std::chrono::duration<double>(Clock::now() - start).count();
 

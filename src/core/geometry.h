@@ -1,8 +1,9 @@
 #pragma once
-// The geometry interface: every kind of primitive a scene holds (triangle meshes, spheres; analytic
-// primitives and CSG later) says how it is bounded and shaded. Triangle meshes hand their triangles
-// to the acceleration structures, which store them in their own layouts; every other geometry is
-// user geometry and intersects rays itself.
+// The geometry interface: every kind of primitive a scene holds (triangle meshes, spheres, analytic
+// primitives, CSG, instances) says how it is bounded and shaded. Triangle meshes hand their
+// triangles to the acceleration structures, which store them in their own layouts; two-level
+// instances hand them their meshes and placements; every other geometry is user geometry and
+// intersects rays itself.
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -23,6 +24,7 @@ struct SurfacePoint {
 };
 
 class UserGeometry;
+class InstanceGeometry;
 
 class Geometry {
 public:
@@ -37,6 +39,8 @@ public:
     virtual const TriangleMesh* triangles() const { return nullptr; }
     /// This geometry as user geometry; null for triangle meshes.
     virtual const UserGeometry* user() const { return nullptr; }
+    /// This geometry as two-level instances of meshes (geometry/instance_geometry.h); null otherwise.
+    virtual const InstanceGeometry* instances() const { return nullptr; }
 };
 
 /// Geometry whose rays the kernels hand to the geometry itself, one primitive at a time.

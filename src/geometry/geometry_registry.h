@@ -5,6 +5,7 @@
 // primitive type adds its scene-file parse function (io/scene_parser.cpp) and a row here.
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "core/geometry.h"
 #include "core/scene.h"
@@ -13,8 +14,9 @@ namespace wideray {
 
 struct GeometryKind {
     const char* name;
-    /// The scene's geometry of this kind; null when it has none.
-    std::unique_ptr<Geometry> (*make)(const Scene& scene);
+    /// The scene's geometry of this kind; null when it has none. `twoLevel` marks the meshes whose
+    /// instances are two-level (twoLevelMeshes).
+    std::unique_ptr<Geometry> (*make)(const Scene& scene, const std::vector<bool>& twoLevel);
 };
 
 std::span<const GeometryKind> geometryKinds();

@@ -11,9 +11,10 @@ Bounds3f UserGeometry::bounds() const {
     return b;
 }
 
-SceneGeometry::SceneGeometry(const Scene& scene) {
+SceneGeometry::SceneGeometry(const Scene& scene, Instancing instancing) {
+    const std::vector<bool> twoLevel = twoLevelMeshes(scene, instancing);
     for (const GeometryKind& kind : geometryKinds())
-        if (std::unique_ptr<Geometry> g = kind.make(scene)) geometries_.push_back(std::move(g));
+        if (std::unique_ptr<Geometry> g = kind.make(scene, twoLevel)) geometries_.push_back(std::move(g));
 }
 
 SceneGeometry::SceneGeometry(TriangleMesh mesh) {
@@ -28,9 +29,27 @@ Bounds3f SceneGeometry::bounds() const {
 
 uint64_t SceneGeometry::triangleCount() const {
     uint64_t n = 0;
-    for (const auto& g : geometries_)
+    for (const auto& g : geometries_) {
         if (const TriangleMesh* t = g->triangles()) n += t->triangles.size();
+        if (const InstanceGeometry* i = g->instances())
+            for (const auto& mesh : i->meshes()) n += mesh->triangleCount();
+    }
     return n;
+}
+
+uint64_t SceneGeometry::instancedTriangleCount() const {
+    uint64_t n = 0;
+    for (const auto& g : geometries_) {
+        if (const TriangleMesh* t = g->triangles()) n += t->triangles.size();
+        if (const InstanceGeometry* i = g->instances()) n += i->instancedTriangles();
+    }
+    return n;
+}
+
+const InstanceGeometry* SceneGeometry::instances() const {
+    for (const auto& g : geometries_)
+        if (const InstanceGeometry* i = g->instances()) return i;
+    return nullptr;
 }
 
 } // namespace wideray

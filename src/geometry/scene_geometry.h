@@ -7,12 +7,13 @@
 
 #include "core/geometry.h"
 #include "core/scene.h"
+#include "geometry/instance_geometry.h"
 
 namespace wideray {
 
 class SceneGeometry {
 public:
-    explicit SceneGeometry(const Scene& scene);
+    explicit SceneGeometry(const Scene& scene, Instancing instancing = Instancing::Auto);
     /// A scene of one mesh and nothing else (tests, benchmarks).
     explicit SceneGeometry(TriangleMesh mesh);
 
@@ -21,7 +22,12 @@ public:
 
     /// The box around every geometry; empty when there is none.
     Bounds3f bounds() const;
+    /// The triangles stored: of the triangle geometry and each instanced mesh once.
     uint64_t triangleCount() const;
+    /// The triangles of the scene's instances, as many as the flattened form has.
+    uint64_t instancedTriangleCount() const;
+    /// The two-level instances; null when there are none.
+    const InstanceGeometry* instances() const;
     SurfacePoint surface(const Ray& ray, const Hit& hit) const { return geometries_[hit.geomId]->surface(ray, hit); }
 
 private:

@@ -4,10 +4,19 @@
 
 namespace wideray {
 
-TriangleMesh flattenTriangles(const Scene& scene) {
+namespace {
+
+bool flattened(const std::vector<bool>& twoLevel, const MeshInstance& instance) {
+    return twoLevel.empty() || !twoLevel.at(instance.mesh);
+}
+
+} // namespace
+
+TriangleMesh flattenTriangles(const Scene& scene, const std::vector<bool>& twoLevel) {
     size_t vertexCount = 0, triangleCount = 0;
     bool anyNormals = false, anyUvs = false;
     for (const MeshInstance& instance : scene.instances) {
+        if (!flattened(twoLevel, instance)) continue;
         const TriangleMesh& mesh = scene.meshes.at(instance.mesh);
         vertexCount += mesh.positions.size();
         triangleCount += mesh.triangles.size();
@@ -23,6 +32,7 @@ TriangleMesh flattenTriangles(const Scene& scene) {
     if (anyUvs) world.uvs.reserve(vertexCount);
 
     for (const MeshInstance& instance : scene.instances) {
+        if (!flattened(twoLevel, instance)) continue;
         const TriangleMesh& mesh = scene.meshes[instance.mesh];
         const uint32_t firstVertex = uint32_t(world.positions.size());
         const glm::mat3 normalTransform = glm::transpose(glm::inverse(glm::mat3(instance.transform)));
@@ -54,15 +64,18 @@ TriangleMesh flattenTriangles(const Scene& scene) {
     return world;
 }
 
-TriangleGeometry::TriangleGeometry(const Scene& scene) : world_(flattenTriangles(scene)) {
+TriangleGeometry::TriangleGeometry(const Scene& scene, const std::vector<bool>& twoLevel)
+    : world_(flattenTriangles(scene, twoLevel)) {
     uint32_t first = 0;
-    for (const MeshInstance& instance : scene.instances) {
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        if (!flattened(twoLevel, scene.instances[i])) continue;
         instanceFirst_.push_back(first);
-        first += uint32_t(scene.meshes[instance.mesh].triangles.size());
+        instanceIds_.push_back(i);
+        first += uint32_t(scene.meshes[scene.instances[i].mesh].triangles.size());
     }
 }
 
-TriangleGeometry::TriangleGeometry(TriangleMesh mesh) : world_(std::move(mesh)), instanceFirst_{0} {}
+TriangleGeometry::TriangleGeometry(TriangleMesh mesh) : world_(std::move(mesh)), instanceFirst_{0}, instanceIds_{0} {}
 
 Bounds3f TriangleGeometry::primitiveBounds(uint32_t primId) const {
     const glm::uvec3& t = world_.triangles[primId];
@@ -82,7 +95,7 @@ Bounds3f TriangleGeometry::bounds() const {
 uint32_t TriangleGeometry::instanceOf(uint32_t primId) const {
     // The last instance that starts at or before primId (instances of empty meshes share a start).
     auto it = std::upper_bound(instanceFirst_.begin(), instanceFirst_.end(), primId);
-    return uint32_t(it - instanceFirst_.begin()) - 1;
+    return instanceIds_[size_t(it - instanceFirst_.begin()) - 1];
 }
 
 SurfacePoint TriangleGeometry::surface(const Ray&, const Hit& hit) const {

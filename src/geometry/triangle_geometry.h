@@ -12,8 +12,8 @@ namespace wideray {
 
 class TriangleGeometry final : public Geometry {
 public:
-    /// The scene's instances, flattened.
-    explicit TriangleGeometry(const Scene& scene);
+    /// The scene's instances of the meshes not marked in `twoLevel` (empty: all), flattened.
+    explicit TriangleGeometry(const Scene& scene, const std::vector<bool>& twoLevel = {});
     /// One mesh placed once, as it is.
     explicit TriangleGeometry(TriangleMesh mesh);
 
@@ -24,15 +24,17 @@ public:
     SurfacePoint surface(const Ray& ray, const Hit& hit) const override;
     const TriangleMesh* triangles() const override { return &world_; }
 
-    /// The instance a triangle belongs to.
+    /// The scene instance a triangle belongs to.
     uint32_t instanceOf(uint32_t primId) const;
 
 private:
     TriangleMesh world_;
-    std::vector<uint32_t> instanceFirst_;  ///< the first primId of each instance
+    std::vector<uint32_t> instanceFirst_;  ///< the first primId of each instance flattened
+    std::vector<uint32_t> instanceIds_;    ///< the scene instance of each
 };
 
-/// All instanced triangles in world space, in one mesh; faceMaterial indexes scene.materials.
-TriangleMesh flattenTriangles(const Scene& scene);
+/// The instanced triangles in world space, in one mesh (of the meshes not marked in `twoLevel`;
+/// empty: all); faceMaterial indexes scene.materials.
+TriangleMesh flattenTriangles(const Scene& scene, const std::vector<bool>& twoLevel = {});
 
 } // namespace wideray

@@ -59,7 +59,7 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
         traverseWide<N, kNodeSimdWidth<N>, false>(
             scene.nodes, scene.root, s.box, ray.tnear, [&] { return hit.t; },
             [&](NodeRef leaf) {
-                if (leaf.isUserLeaf()) return blocked = intersectUserLeaf<true>(leaves, leaf, ray, hit, cost);
+                if (leaf.isUserLeaf()) return blocked = intersectUserLeaf<N, true>(leaves, leaf, ray, hit, cost);
                 for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b)
                     if (intersectBlock<kBlockSize, true>(leaves.blocks[b], s, ray, hit)) {
                         cache.block = b;

@@ -1,8 +1,8 @@
 #pragma once
 // The leaf intersector of a scene's BVH: what every traversal kind (single rays, packets, large
-// packets, streams) calls at a leaf, by the leaf's type: triangle blocks or user primitives. A new
-// leaf type (another triangle layout, instances) is a new branch here; the traversals stay as they
-// are.
+// packets, streams) calls at a leaf, by the leaf's type: triangle blocks or user primitives (two-level
+// instances among them). A new leaf type (another triangle layout) is a new branch here; the
+// traversals stay as they are.
 #include "kernels/triangle_leaf.h"
 #include "kernels/user_leaf.h"
 
@@ -11,6 +11,7 @@
 namespace wideray {
 inline namespace WIDERAY_ISA {
 
+template <int N>
 struct SceneLeafIntersector {
     SceneLeaves leaves;
 
@@ -20,7 +21,7 @@ struct SceneLeafIntersector {
     [[gnu::always_inline]] bool single(NodeRef leaf, const SingleRayState& s, const Ray& ray, Hit& hit,
                                        TraversalCost& cost) const {
         ++cost.leaves;
-        if (leaf.isUserLeaf()) return intersectUserLeaf<AnyHit>(leaves, leaf, ray, hit, cost);
+        if (leaf.isUserLeaf()) return intersectUserLeaf<N, AnyHit>(leaves, leaf, ray, hit, cost);
         for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b) {
             cost.primitives += kBlockSize;
             if (intersectBlock<TriW, AnyHit>(leaves.blocks[b], s, ray, hit)) return true;
@@ -35,7 +36,7 @@ struct SceneLeafIntersector {
     [[gnu::always_inline]] vbool<K> packet(NodeRef leaf, const PacketRay<K>& p, vbool<K> active, PacketHit<K>& h,
                                            UserHits& user, Cost& cost) const {
         cost.enter(movemask(active));
-        if (leaf.isUserLeaf()) return intersectUserLeafPacket<K, AnyHit>(leaves, leaf, active, h, user, cost);
+        if (leaf.isUserLeaf()) return intersectUserLeafPacket<N, K, AnyHit>(leaves, leaf, active, h, user, cost);
         vbool<K> occluded(false);
         for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b) {
             cost.test(movemask(active), kBlockSize);

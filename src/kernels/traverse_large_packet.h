@@ -233,7 +233,7 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
 }
 
 /// Closest hits (or occlusion) of up to K * P rays, and their costs where `costsOut` is given.
-template <int N, int K, int P, bool AnyHit, class Leaves = SceneLeafIntersector>
+template <int N, int K, int P, bool AnyHit, class Leaves = SceneLeafIntersector<N>>
 inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
                              uint8_t* occludedOut, TraversalCost* costsOut = nullptr) {
     if (costsOut)

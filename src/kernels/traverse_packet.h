@@ -171,7 +171,7 @@ inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int c
 }
 
 /// Closest hits (or occlusion) of up to K rays, and their costs where `costsOut` is given.
-template <int N, int K, bool AnyHit, class Leaves = SceneLeafIntersector>
+template <int N, int K, bool AnyHit, class Leaves = SceneLeafIntersector<N>>
 inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut,
                         TraversalCost* costsOut = nullptr) {
     if (costsOut) return tracePacketCounted<N, K, AnyHit, true, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);

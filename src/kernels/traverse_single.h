@@ -84,7 +84,7 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
 
 /// Closest hit (AnyHit = false) or occlusion (AnyHit = true, returns whether occluded) of one valid
 /// ray in the subtree at `root`; `hit` holds the ray's closest hit so far (a miss at ray.tfar to begin).
-template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector>
+template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector<N>>
 inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray, const SingleRayState& s, Hit& hit,
                          TraversalCost& cost) {
     const Leaves leaves{scene.leaves};
@@ -96,7 +96,7 @@ inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray
 }
 
 /// The same for the whole scene; invalid rays miss.
-template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector>
+template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector<N>>
 inline bool traceSingle(const SceneView<N>& scene, const Ray& ray, Hit& hit, TraversalCost& cost) {
     if (!isValidRay(ray)) return false;
     return traceSubtree<N, NodeW, TriW, AnyHit, Leaves>(scene, scene.root, ray, makeSingleRayState(ray), hit, cost);
@@ -104,3 +104,5 @@ inline bool traceSingle(const SceneView<N>& scene, const Ray& ray, Hit& hit, Tra
 
 } // namespace WIDERAY_ISA
 } // namespace wideray
+
+#include "kernels/instance_leaf.h"  // intersectInstance, which the leaf intersector calls

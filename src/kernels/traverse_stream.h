@@ -437,7 +437,7 @@ inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t 
 
 /// Closest hits (AnyHit = false) or occlusion of `count` rays as one stream, and their costs where
 /// `costsOut` is given.
-template <int N, int K, bool AnyHit, StreamOrder Order, class Leaves = SceneLeafIntersector>
+template <int N, int K, bool AnyHit, StreamOrder Order, class Leaves = SceneLeafIntersector<N>>
 inline void traceStream(const SceneView<N>& scene, const Ray* rays, size_t count, Hit* hitsOut, uint8_t* occludedOut,
                         StreamWorkspace& ws, TraversalCost* costsOut = nullptr) {
     for (size_t i = 0; i < count; ++i) {
