@@ -47,6 +47,10 @@ public:
     /// incoherent ones; or one entry point by name (rtcIntersect1, 4, 8, 16, rtcIntersect1M).
     std::unique_ptr<Tracer> tracer(const KernelChoice& choice) const override;
 
+    /// Whether the scene has two-level instances. Embree 3.13.5's rtcOccluded16 does not return on
+    /// some shadow rays through instances on this AVX-512 machine (measured: scenes/bunny_field.json),
+    /// so its tracers occlude 16-wide packets as two of 8 there.
+    bool instanced() const { return !instanceFirstPrim_.empty(); }
     /// Hits of instances (geomId: the instance's geomID in Embree's scene) with our geomId and primId.
     void fromInstanceHits(std::span<Hit> hits) const;
 

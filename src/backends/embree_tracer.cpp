@@ -229,7 +229,9 @@ void EmbreeTracer::intersect(std::span<const Ray> rays, std::span<Hit> hits, Coh
 void EmbreeTracer::occluded(std::span<const Ray> rays, std::span<uint8_t> occluded, Coherence coherence, int) const {
     RTCIntersectContext context = contextFor(coherence);
     RTCScene scene = structure_->scene();
-    switch (kernel(coherence)) {
+    EmbreeKernel k = kernel(coherence);
+    if (k == EmbreeKernel::Packet16 && structure_->instanced()) k = EmbreeKernel::Packet8;  // see EmbreeStructure::instanced
+    switch (k) {
     case EmbreeKernel::Intersect1: occludedSingle(scene, context, rays, occluded); break;
     case EmbreeKernel::Packet4: occludedPackets<4>(scene, context, rays, occluded); break;
     case EmbreeKernel::Packet8: occludedPackets<8>(scene, context, rays, occluded); break;

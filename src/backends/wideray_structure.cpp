@@ -33,7 +33,8 @@ std::string WideBvhStructure<N>::summary() const {
     const uint64_t triangles = geometry().triangleCount();
     const double bytesPerTriangle = triangles == 0 ? 0.0 : double(bytes()) / double(triangles);
     const BuildTimings& t = accel_.timings();
-    const size_t blocks = accel_.blocks().size();
+    size_t blocks = accel_.blocks().size();
+    for (const auto& mesh : accel_.instancedMeshes()) blocks += mesh->blocks().size();
     const uint64_t references = accel_.triangleReferences();
     const double blockFill = blocks ? double(references) / double(blocks * kBlockSize) : 0.0;
     return fmt::format("BVH{} ({} quality): {} inner nodes ({:.2f} of {} children each), {} leaves ({} blocks of {} triangles, "

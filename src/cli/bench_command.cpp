@@ -15,6 +15,7 @@
 
 #include "backends/backend_registry.h"
 #include "backends/course_structure.h"
+#include "backends/embree_structure.h"
 #include "backends/embree_tracer.h"
 #include "backends/wideray_structure.h"
 #include "cli/commands.h"
@@ -179,12 +180,13 @@ std::vector<Candidate> courseCandidates(std::shared_ptr<const CourseStructure> s
     return out;
 }
 
-/// Each of Embree's entry points this CPU runs natively, over one Embree structure.
-std::vector<Candidate> embreeCandidates(const Structure& embree, const std::string& quality) {
+/// Each of Embree's entry points this CPU runs natively, over one Embree structure (but 16-wide
+/// packets through instances, whose occlusion it traces as two 8-wide packets: EmbreeStructure::instanced).
+std::vector<Candidate> embreeCandidates(const EmbreeStructure& embree, const std::string& quality) {
     std::vector<Candidate> out;
     for (EmbreeKernel kernel : {EmbreeKernel::Intersect1, EmbreeKernel::Packet4, EmbreeKernel::Packet8,
                                 EmbreeKernel::Packet16, EmbreeKernel::Stream1M}) {
-        if (!embreeSupports(kernel)) continue;
+        if (!embreeSupports(kernel) || (kernel == EmbreeKernel::Packet16 && embree.instanced())) continue;
         std::shared_ptr<const Tracer> tracer = embree.tracer({embreeKernelName(kernel)});
         out.push_back({"embree", embreeKernelName(kernel), "embree", "embree", quality, "",
                        [tracer](const Ray* r, size_t n, Hit* h, uint8_t* o, bool coherent, TraversalCost*) {
@@ -275,7 +277,8 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
         for (Candidate& c : others) candidates.push_back(std::move(c));
     if (args.backend != "wideray")
         for (const auto& [quality, structure] : embree)
-            for (Candidate& c : embreeCandidates(*structure, quality)) candidates.push_back(std::move(c));
+            for (Candidate& c : embreeCandidates(static_cast<const EmbreeStructure&>(*structure), quality))
+                candidates.push_back(std::move(c));
 
     fmt::print("\n{:<28} {:<8} {:<8} {:<15} {:<8} {:<7} {:>10} {:>9} {}{}\n", "scene", "rays", "backend", "kernel",
                "isa", "build", "Mrays/s", "hits", args.counters ? "nodes/ray leaves/ray prims/ray " : "",

@@ -16,6 +16,7 @@
 #include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/random.h"
 #include "io/image_io.h"
 #include "io/json_document.h"
 #include "io/mesh_generators.h"
@@ -622,17 +623,48 @@ private:
 
     template <MeshObjectParser parse>
     void readPlaced(const Node& n) {
-        scene_.instances.push_back((this->*parse)(n));
+        const MeshInstance placed = (this->*parse)(n);
+        if (!n.has("repeat")) return scene_.instances.push_back(placed);
+        for (const auto& [move, turn] : repeats(n["repeat"]))
+            scene_.instances.push_back({placed.mesh, move * placed.transform * turn, placed.material});
+    }
+
+    /// "repeat": copies on a lattice of count[0] x count[1] x count[2] points `step` apart, each first
+    /// turned about its object-space y axis by a random angle within +-`turn` degrees (seeded by
+    /// `seed`): per copy, the move after the object's transform and the turn before it.
+    std::vector<std::pair<glm::mat4, glm::mat4>> repeats(const Node& n) const {
+        expectObject(n);
+        checkKeys(n, {"count", "step", "turn", "seed"});
+        require(n, "count");
+        require(n, "step");
+        const Node c = n["count"];
+        if (!c.value.is_array() || c.value.size() != 3) fail(c.path, "expected [nx, ny, nz], got " + describe(c.value));
+        const glm::ivec3 count(integer(c[size_t(0)], 1, 1000000), integer(c[size_t(1)], 1, 1000000), integer(c[size_t(2)], 1, 1000000));
+        if (int64_t(count.x) * count.y * count.z > 1000000) fail(c.path, "at most 1000000 copies");
+        const glm::vec3 step = vec3(n["step"]);
+        const float turn = n.has("turn") ? nonNegative(n["turn"]) : 0.0f;
+        const uint32_t seed = n.has("seed") ? uint32_t(integer(n["seed"], 0, 1 << 30)) : 0u;
+        std::vector<std::pair<glm::mat4, glm::mat4>> copies;
+        copies.reserve(size_t(count.x) * count.y * count.z);
+        for (int k = 0; k < count.z; ++k)
+            for (int j = 0; j < count.y; ++j)
+                for (int i = 0; i < count.x; ++i) {
+                    const uint32_t index = uint32_t(copies.size());
+                    const float u = float(pcgHash(index ^ pcgHash(seed)) >> 8) * 0x1p-24f;  // [0, 1)
+                    copies.emplace_back(glm::translate(glm::mat4(1.0f), step * glm::vec3(i, j, k)),
+                                        glm::rotate(glm::mat4(1.0f), glm::radians(turn * (2.0f * u - 1.0f)), glm::vec3(0, 1, 0)));
+                }
+        return copies;
     }
 
     MeshInstance meshFileObject(const Node& n) {
-        checkKeys(n, {"type", "file", "material", "transform"});
+        checkKeys(n, {"type", "file", "material", "transform", "repeat"});
         require(n, "file");
         return instanceOf(loadMeshFile(n["file"], std::nullopt), n);
     }
 
     MeshInstance namedMeshObject(const Node& n) {
-        checkKeys(n, {"type", "mesh", "material", "transform"});
+        checkKeys(n, {"type", "mesh", "material", "transform", "repeat"});
         require(n, "mesh");
         const Node name = n["mesh"];
         auto it = meshNamed_.find(string(name));
@@ -648,13 +680,13 @@ private:
         require(n, "shape");
         const std::string shape = shapeName(n["shape"]);
         std::vector<std::string> keys = shapeKeys(shape);
-        keys.insert(keys.end(), {"type", "shape", "material", "transform"});
+        keys.insert(keys.end(), {"type", "shape", "material", "transform", "repeat"});
         checkKeys(n, keys);
         return ownMesh(generateShape(shape, n), n);
     }
 
     MeshInstance trianglesObject(const Node& n) {
-        checkKeys(n, {"type", "vertices", "indices", "normals", "uvs", "material", "face_materials", "transform"});
+        checkKeys(n, {"type", "vertices", "indices", "normals", "uvs", "material", "face_materials", "transform", "repeat"});
         if (n.has("material") && n.has("face_materials"))
             fail(n.path, "\"material\" and \"face_materials\" cannot be combined");
         return ownMesh(inlineTriangles(n), n);
@@ -826,6 +858,7 @@ private:
         }
         for (const auto& [name, parse] : meshObjectTypes()) {
             if (type != name) continue;
+            if (n.has("repeat")) fail(n["repeat"].path, "a CSG operand cannot be repeated");
             MeshInstance placed = (this->*parse)(n);
             placed.transform = parent * placed.transform;
             if (!n.has("material") && material) placed.material = *material;
