@@ -89,9 +89,10 @@ bench-accelerators: deps
 	  --why docs/accelerators-why.md --markdown docs/accelerators.md
 
 ## Renders every effect scene to docs/gallery/NAME.png.
-GALLERY_SCENES := beer metals soft_shadows glossy dof textures fog polarization polarization_off quadrics blobs terrain csg
+GALLERY_SCENES := beer metals soft_shadows glossy dof textures fog polarization polarization_off quadrics blobs terrain csg motion_blur
 # The path-traced interior needs the shared Sponza.
 GALLERY_SCENES += $(if $(wildcard $(SCENES_DIR)/crytek-sponza/sponza.obj),sponza_path)
+GALLERY_SCENES += $(if $(wildcard $(SCENES_DIR)/stanford-bunny/bun_zipper.ply),bunny_field)
 gallery: configure
 	cmake --build $(BUILD) -j $(JOBS) --target wideray
 	mkdir -p docs/gallery

@@ -19,12 +19,20 @@ struct InstanceRef {
     double objectFromWorld[12];
     uint32_t mesh;       ///< index into InstanceTable's mesh views
     uint32_t firstPrim;  ///< the primId of its mesh's first triangle (geometry/instance_geometry.h)
+    uint32_t motion = kInvalidId;  ///< a moving instance's index into InstanceTable::motions
+};
+
+/// A moving instance's world-from-object transforms (row-major 3x4) at times 0 and 1, interpolated
+/// entry by entry for the ray's time and inverted per ray.
+struct InstanceMotion {
+    double worldFromObject[2][12];
 };
 
 /// The instances of a scene's BVH: its user leaves' primitives of geometry geomId are instances.
 struct InstanceTable {
     uint32_t geomId = kInvalidId;
     const InstanceRef* instances = nullptr;
+    const InstanceMotion* motions = nullptr;
     const SceneView<4>* meshes4 = nullptr;  ///< one BVH per instanced mesh, of the scene BVH's width
     const SceneView<8>* meshes8 = nullptr;
 

@@ -212,15 +212,24 @@ void SceneAccel<N>::buildInstances(uint32_t geomId, const InstanceGeometry& inst
         timings_.binarySeconds += meshAccels_.back()->timings().binarySeconds;
         timings_.collapseSeconds += meshAccels_.back()->timings().collapseSeconds;
     }
-    for (const InstanceGeometry::Placement& p : instances.placements()) {
-        const glm::dmat4 objectFromWorld = glm::inverse(glm::dmat4(p.transform));
-        InstanceRef ref{{}, p.mesh, p.firstPrim};
+    auto rows = [](const glm::dmat4& m, double* out) {
         for (int row = 0; row < 3; ++row)
-            for (int column = 0; column < 4; ++column) ref.objectFromWorld[4 * row + column] = objectFromWorld[column][row];
+            for (int column = 0; column < 4; ++column) out[4 * row + column] = m[column][row];
+    };
+    for (const InstanceGeometry::Placement& p : instances.placements()) {
+        InstanceRef ref{{}, p.mesh, p.firstPrim};
+        rows(glm::inverse(glm::dmat4(p.transform)), ref.objectFromWorld);
+        if (p.endTransform) {
+            ref.motion = uint32_t(instanceMotions_.size());
+            InstanceMotion& motion = instanceMotions_.emplace_back();
+            rows(glm::dmat4(p.transform), motion.worldFromObject[0]);
+            rows(glm::dmat4(*p.endTransform), motion.worldFromObject[1]);
+        }
         instanceRefs_.push_back(ref);
     }
     instanceTable_.geomId = geomId;
     instanceTable_.instances = instanceRefs_.data();
+    instanceTable_.motions = instanceMotions_.data();
     if constexpr (N == 4) instanceTable_.meshes4 = meshViews_.data();
     else instanceTable_.meshes8 = meshViews_.data();
 }
@@ -268,7 +277,8 @@ size_t SceneAccel<N>::triangleReferences() const {
 template <int N>
 size_t SceneAccel<N>::bytes() const {
     size_t bytes = bvh_.nodes.size() * sizeof(WideNode<N>) + blocks_.size() * sizeof(TriangleBlock<kBlockSize>) +
-                   prims_.size() * sizeof(PrimRef) + instanceRefs_.size() * sizeof(InstanceRef);
+                   prims_.size() * sizeof(PrimRef) + instanceRefs_.size() * sizeof(InstanceRef) +
+                   instanceMotions_.size() * sizeof(InstanceMotion);
     for (const auto& mesh : meshAccels_) bytes += mesh->bytes();
     return bytes;
 }

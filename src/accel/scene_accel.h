@@ -62,6 +62,7 @@ private:
     std::vector<std::unique_ptr<SceneAccel<N>>> meshAccels_;
     std::vector<SceneView<N>> meshViews_;
     std::vector<InstanceRef> instanceRefs_;
+    std::vector<InstanceMotion> instanceMotions_;
     InstanceTable instanceTable_;
     BuildTimings timings_;
 };

@@ -85,7 +85,9 @@ void EmbreeStructure::attachInstances(const InstanceGeometry& instances, uint32_
     for (const InstanceGeometry::Placement& p : instances.placements()) {
         RTCGeometry g = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(g, meshScenes_[p.mesh].get());
+        rtcSetGeometryTimeStepCount(g, p.endTransform ? 2 : 1);  // Embree interpolates the matrices entry by entry, as we do
         rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &p.transform[0][0]);
+        if (p.endTransform) rtcSetGeometryTransform(g, 1, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &(*p.endTransform)[0][0]);
         rtcCommitGeometry(g);
         rtcAttachGeometryByID(scene_.get(), g, firstInstanceId_ + uint32_t(instanceFirstPrim_.size()));
         rtcReleaseGeometry(g);

@@ -33,7 +33,7 @@ RTCIntersectContext contextFor(Coherence coherence) {
 
 void toEmbree(const Ray& r, RTCRay& e) {
     e.org_x = r.ox, e.org_y = r.oy, e.org_z = r.oz, e.tnear = r.tnear;
-    e.dir_x = r.dx, e.dir_y = r.dy, e.dir_z = r.dz, e.time = 0.0f;
+    e.dir_x = r.dx, e.dir_y = r.dy, e.dir_z = r.dz, e.time = r.time;
     e.tfar = r.tfar, e.mask = UINT32_MAX, e.id = 0, e.flags = 0;
 }
 
@@ -79,7 +79,7 @@ void loadPacket(std::span<const Ray> rays, size_t first, Rays& e, int* valid) {
         Ray r = active ? rays[first + i] : Ray{};
         valid[i] = active ? -1 : 0;
         e.org_x[i] = r.ox, e.org_y[i] = r.oy, e.org_z[i] = r.oz, e.tnear[i] = r.tnear;
-        e.dir_x[i] = r.dx, e.dir_y[i] = r.dy, e.dir_z[i] = r.dz, e.time[i] = 0.0f;
+        e.dir_x[i] = r.dx, e.dir_y[i] = r.dy, e.dir_z[i] = r.dz, e.time[i] = r.time;
         e.tfar[i] = r.tfar, e.mask[i] = UINT32_MAX, e.id[i] = 0, e.flags[i] = 0;
     }
 }

@@ -12,7 +12,7 @@ const UserGeometry& geometryOf(void* userPtr) { return *static_cast<const UserGe
 Ray rayOf(RTCRayN* rays, unsigned n, unsigned i) {
     return {RTCRayN_org_x(rays, n, i), RTCRayN_org_y(rays, n, i), RTCRayN_org_z(rays, n, i),
             RTCRayN_dir_x(rays, n, i), RTCRayN_dir_y(rays, n, i), RTCRayN_dir_z(rays, n, i),
-            RTCRayN_tnear(rays, n, i), RTCRayN_tfar(rays, n, i)};
+            RTCRayN_tnear(rays, n, i), RTCRayN_tfar(rays, n, i), RTCRayN_time(rays, n, i)};
 }
 
 void bounds(const RTCBoundsFunctionArguments* args) {

@@ -14,6 +14,7 @@ struct Ray {
     float dx = 0, dy = 0, dz = 1;
     float tnear = 0;
     float tfar = std::numeric_limits<float>::infinity();
+    float time = 0;  ///< within the camera's shutter, in [0, 1]: where moving objects are (motion blur)
 };
 
 /// The closest hit along a ray. geomId 0 is the scene's triangles; user geometries follow.

@@ -23,6 +23,7 @@ struct Camera {
     float fovY = 45.0f;          ///< vertical field of view in degrees
     float aperture = 0.0f;       ///< lens radius; 0 is a pinhole
     float focusDistance = 0.0f;  ///< 0 means the distance to lookAt
+    float shutterOpen = 0.0f, shutterClose = 0.0f;  ///< the times within [0, 1] the camera's rays sample
 };
 
 struct ImageSettings {
@@ -69,6 +70,9 @@ struct MeshInstance {
     uint32_t mesh = 0;
     glm::mat4 transform{1.0f};
     uint32_t material = kMeshMaterials;
+    /// Moving instances: the transform at time 1 (`transform` is at time 0), interpolated linearly
+    /// entry by entry in between, as Embree does.
+    std::optional<glm::mat4> endTransform{};
 };
 
 struct Sphere {
@@ -93,6 +97,7 @@ struct BlobBall {
 struct AnalyticObject {
     AnalyticShape shape = AnalyticShape::Ellipsoid;
     glm::mat4 transform{1.0f};  ///< object to world, affine and invertible
+    std::optional<glm::mat4> endTransform{};  ///< moving objects: at time 1, as MeshInstance's
     /// Quadric: A..J of A x^2 + B y^2 + C z^2 + D xy + E xz + F yz + G x + H y + I z + J = 0.
     std::array<float, 10> coefficients{};
     float majorRadius = 1.0f, minorRadius = 0.25f;  ///< torus

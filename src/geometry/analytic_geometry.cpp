@@ -100,7 +100,7 @@ AnalyticGeometry::AnalyticGeometry(const std::vector<AnalyticObject>& objects) {
         const glm::dvec3 margin = 1e-4 * (o.upper - o.lower);
         o.lower -= margin;
         o.upper += margin;
-        o.worldBounds = o.space.bounds(o.lower, o.upper);
+        o.worldBounds = motionBounds(model.transform, model.endTransform, o.lower, o.upper);
         objects_.push_back(o);
     }
 }
@@ -212,6 +212,11 @@ void AnalyticGeometry::visitBlobRoots(const AnalyticObject& blob, const glm::dve
     }
 }
 
+const ObjectSpace& AnalyticGeometry::spaceAt(const Object& object, float time, std::optional<ObjectSpace>& moving) {
+    if (!object.model.endTransform) return object.space;
+    return moving.emplace(ObjectSpace::at(object.model.transform, *object.model.endTransform, time));
+}
+
 bool AnalyticGeometry::contains(const Object& object, const glm::dvec3& p) {
     switch (object.model.shape) {
     case AnalyticShape::Torus: {
@@ -237,7 +242,9 @@ bool AnalyticGeometry::contains(const Object& object, const glm::dvec3& p) {
 void AnalyticGeometry::crossings(uint32_t primId, const Ray& ray, SolidCrossings& out) const {
     const Object& object = objects_[primId];
     glm::dvec3 o, d;
-    object.space.ray(ray, o, d);
+    std::optional<ObjectSpace> moving;
+    const ObjectSpace& space = spaceAt(object, ray.time, moving);
+    space.ray(ray, o, d);
     double t0 = -std::numeric_limits<double>::infinity(), t1 = -t0;
     if (!boxInterval(object.lower, object.upper, o, d, t0, t1)) return;
     const size_t first = out.size();
@@ -265,7 +272,9 @@ void AnalyticGeometry::crossings(uint32_t primId, const Ray& ray, SolidCrossings
 bool AnalyticGeometry::intersect(const Ray& ray, uint32_t primId, float tfar, float& t, float& u, float& v) const {
     const Object& object = objects_[primId];
     glm::dvec3 o, d;
-    object.space.ray(ray, o, d);
+    std::optional<ObjectSpace> moving;
+    const ObjectSpace& space = spaceAt(object, ray.time, moving);
+    space.ray(ray, o, d);
     double tHit = std::numeric_limits<double>::infinity();
     int part = 0;
     visitRoots(object, o, d, ray.tnear, tfar, [&](double root, int rootPart) {
@@ -283,7 +292,9 @@ bool AnalyticGeometry::intersect(const Ray& ray, uint32_t primId, float tfar, fl
 SurfacePoint AnalyticGeometry::surface(const Ray& ray, const Hit& hit) const {
     const Object& object = objects_[hit.primId];
     glm::dvec3 o, d;
-    object.space.ray(ray, o, d);
+    std::optional<ObjectSpace> moving;
+    const ObjectSpace& space = spaceAt(object, ray.time, moving);
+    space.ray(ray, o, d);
     glm::dvec3 p = o + double(hit.t) * d;
     const int part = int(hit.u);
     glm::dvec3 normal;
@@ -307,8 +318,8 @@ SurfacePoint AnalyticGeometry::surface(const Ray& ray, const Hit& hit) const {
         uv = {float(0.5 * (p.x + 1.0)), float(0.5 * (p.z + 1.0))};
     }
     SurfacePoint sp;
-    sp.position = object.space.point(p);
-    sp.geometricNormal = sp.shadingNormal = object.space.normal(normal);
+    sp.position = space.point(p);
+    sp.geometricNormal = sp.shadingNormal = space.normal(normal);
     sp.uv = uv;
     sp.material = object.model.material;
     return sp;

@@ -5,6 +5,7 @@
 // solved robustly and refined on the torus' own equation, blobs by the degree-6 polynomial their
 // field is between the points where the ray enters and leaves a ball), and its normal brought back
 // by the inverse transpose. t is the same in both spaces (the direction is transformed, not normalized).
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -42,7 +43,7 @@ public:
 private:
     struct Object {
         AnalyticObject model;
-        ObjectSpace space;
+        ObjectSpace space;  ///< at time 0 (the only one unless model.endTransform)
         Quadric quadric{};         ///< the quadrics (within -1 <= y <= 1, capped there where capped)
         glm::dvec3 lower{0.0}, upper{0.0};  ///< the object-space box
         Bounds3f worldBounds{};
@@ -59,6 +60,9 @@ private:
     template <class Visit>
     static void visitBlobRoots(const AnalyticObject& blob, const glm::dvec3& o, const glm::dvec3& d, double t0, double t1,
                                Visit&& visit);
+
+    /// The object's space at the ray's time: its own unless it moves (then made in `moving`).
+    static const ObjectSpace& spaceAt(const Object& object, float time, std::optional<ObjectSpace>& moving);
 
     /// Whether the object-space point lies inside the solid.
     static bool contains(const Object& object, const glm::dvec3& p);

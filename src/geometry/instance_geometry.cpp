@@ -11,12 +11,17 @@ namespace wideray {
 
 std::vector<bool> twoLevelMeshes(const Scene& scene, Instancing instancing) {
     std::vector<uint32_t> uses(scene.meshes.size(), 0);
-    for (const MeshInstance& instance : scene.instances) ++uses.at(instance.mesh);
+    std::vector<bool> moves(scene.meshes.size(), false);
+    for (const MeshInstance& instance : scene.instances) {
+        ++uses.at(instance.mesh);
+        if (instance.endTransform) moves[instance.mesh] = true;
+    }
     std::vector<bool> twoLevel(scene.meshes.size(), false);
     for (size_t m = 0; m < uses.size(); ++m) {
         const uint64_t copies = uint64_t(uses[m] > 0 ? uses[m] - 1 : 0) * scene.meshes[m].triangles.size();
         twoLevel[m] = uses[m] > 0 && !scene.meshes[m].triangles.empty() &&
-                      (instancing == Instancing::TwoLevel || (instancing == Instancing::Auto && copies >= kAutoTwoLevelTriangles));
+                      (moves[m] || instancing == Instancing::TwoLevel ||
+                       (instancing == Instancing::Auto && copies >= kAutoTwoLevelTriangles));
     }
     return twoLevel;
 }
@@ -35,9 +40,9 @@ InstanceGeometry::InstanceGeometry(const Scene& scene, const std::vector<bool>& 
             throw std::length_error("InstanceGeometry: more than 2^32 - 1 instanced triangles (" +
                                     std::to_string(instancedTriangles_ + mesh.triangleCount()) + ")");
         const Bounds3f box = mesh.bounds();
-        placements_.push_back({meshIndex[instance.mesh], instance.transform, instance.material, i,
+        placements_.push_back({meshIndex[instance.mesh], instance.transform, instance.endTransform, instance.material, i,
                                uint32_t(instancedTriangles_),
-                               ObjectSpace(instance.transform).bounds(glm::dvec3(box.lower), glm::dvec3(box.upper))});
+                               motionBounds(instance.transform, instance.endTransform, glm::dvec3(box.lower), glm::dvec3(box.upper))});
         instancedTriangles_ += mesh.triangleCount();
     }
 }
@@ -60,7 +65,7 @@ SurfacePoint InstanceGeometry::surface(const Ray& ray, const Hit& hit) const {
     const Placement& p = placements_[instanceOf(hit.primId)];
     const SceneGeometry& mesh = *meshes_[p.mesh];
     const SurfacePoint local = mesh.surface(ray, {hit.t, hit.u, hit.v, hit.primId - p.firstPrim, 0});
-    const ObjectSpace space(p.transform);
+    const ObjectSpace space = p.endTransform ? ObjectSpace::at(p.transform, *p.endTransform, ray.time) : ObjectSpace(p.transform);
     SurfacePoint sp = local;
     sp.position = space.point(glm::dvec3(local.position));
     sp.geometricNormal = space.normal(glm::dvec3(local.geometricNormal));

@@ -6,6 +6,7 @@
 // the instance's first primId (instances in scene order, each counting its mesh's triangles) plus
 // the triangle's index in its mesh.
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -18,7 +19,7 @@ namespace wideray {
 
 class SceneGeometry;
 
-/// Which instances are two-level: Auto, those of meshes whose copies beyond the first would add
+/// Which instances are two-level (moving instances always are): Auto, those of meshes whose copies beyond the first would add
 /// kAutoTwoLevelTriangles or more triangles to the flattened form (below that, flattening costs
 /// little memory and saves the ray's transform); TwoLevel, all; Flatten, none (every instance's
 /// triangles copied into the world-space triangle geometry).
@@ -32,7 +33,8 @@ class InstanceGeometry final : public Geometry {
 public:
     struct Placement {
         uint32_t mesh;           ///< index into meshes()
-        glm::mat4 transform;     ///< object to world
+        glm::mat4 transform;     ///< object to world (at time 0 if it moves)
+        std::optional<glm::mat4> endTransform;  ///< moving: at time 1
         uint32_t material;       ///< MeshInstance::kMeshMaterials: the mesh's own
         uint32_t sceneInstance;  ///< index into Scene::instances
         uint32_t firstPrim;

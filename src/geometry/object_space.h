@@ -4,6 +4,7 @@
 // spaces), points back to the world, normals by the inverse transpose, its world box from its
 // object-space box, and the ray's interval through an object-space box.
 #include <algorithm>
+#include <optional>
 
 #include <glm/glm.hpp>
 
@@ -16,8 +17,14 @@ struct ObjectSpace {
     glm::dmat4 toWorld, toObject;
     glm::dmat3 normalToWorld;  ///< the inverse transpose of the transform's linear part
 
-    explicit ObjectSpace(const glm::mat4& objectToWorld)
+    explicit ObjectSpace(const glm::dmat4& objectToWorld)
         : toWorld(objectToWorld), toObject(glm::inverse(toWorld)), normalToWorld(glm::transpose(glm::dmat3(toObject))) {}
+    explicit ObjectSpace(const glm::mat4& objectToWorld) : ObjectSpace(glm::dmat4(objectToWorld)) {}
+
+    /// A moving object's space at `time` in [0, 1]: its transforms interpolated entry by entry.
+    static ObjectSpace at(const glm::mat4& start, const glm::mat4& end, float time) {
+        return ObjectSpace((1.0 - double(time)) * glm::dmat4(start) + double(time) * glm::dmat4(end));
+    }
 
     void ray(const Ray& r, glm::dvec3& o, glm::dvec3& d) const {
         o = glm::dvec3(toObject * glm::dvec4(r.ox, r.oy, r.oz, 1.0));
@@ -44,6 +51,15 @@ struct ObjectSpace {
         return {b.lower - pad, b.upper + pad};
     }
 };
+
+/// The world box of an object-space box over a motion: the boxes at both ends hold it throughout,
+/// each corner moving on a straight line between its two positions.
+inline Bounds3f motionBounds(const glm::mat4& start, const std::optional<glm::mat4>& end, const glm::dvec3& lower,
+                             const glm::dvec3& upper) {
+    Bounds3f b = ObjectSpace(start).bounds(lower, upper);
+    if (end) b.grow(ObjectSpace(*end).bounds(lower, upper));
+    return b;
+}
 
 /// Narrows [t0, t1] to the object-space ray's part inside the box [lower, upper]; false when none is.
 inline bool boxInterval(const glm::dvec3& lower, const glm::dvec3& upper, const glm::dvec3& o, const glm::dvec3& d,

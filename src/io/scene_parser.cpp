@@ -67,7 +67,7 @@ private:
     // ---- camera, image, fog, render settings
 
     void readCamera(const Node& n) {
-        checkKeys(n, {"position", "look_at", "up", "fov", "aperture", "focus_distance"});
+        checkKeys(n, {"position", "look_at", "up", "fov", "aperture", "focus_distance", "shutter"});
         Camera& camera = scene_.camera;
         if (n.has("position")) camera.position = vec3(n["position"]);
         if (n.has("look_at")) camera.lookAt = vec3(n["look_at"]);
@@ -78,6 +78,13 @@ private:
         }
         if (n.has("aperture")) camera.aperture = nonNegative(n["aperture"]);
         if (n.has("focus_distance")) camera.focusDistance = nonNegative(n["focus_distance"]);
+        if (n.has("shutter")) {
+            const glm::vec2 shutter = vector<2>(n["shutter"]);
+            if (!(shutter.x >= 0.0f && shutter.x <= shutter.y && shutter.y <= 1.0f))
+                fail(n["shutter"].path, "expected [open, close] with 0 <= open <= close <= 1");
+            camera.shutterOpen = shutter.x;
+            camera.shutterClose = shutter.y;
+        }
         const glm::vec3 view = camera.lookAt - camera.position;
         if (view == glm::vec3(0.0f)) fail(n.path, "look_at must differ from position");
         if (glm::length(glm::cross(glm::normalize(view), glm::normalize(camera.up))) < 1e-6f)
@@ -625,8 +632,11 @@ private:
     void readPlaced(const Node& n) {
         const MeshInstance placed = (this->*parse)(n);
         if (!n.has("repeat")) return scene_.instances.push_back(placed);
-        for (const auto& [move, turn] : repeats(n["repeat"]))
-            scene_.instances.push_back({placed.mesh, move * placed.transform * turn, placed.material});
+        for (const auto& [move, turn] : repeats(n["repeat"])) {
+            std::optional<glm::mat4> end;
+            if (placed.endTransform) end = move * *placed.endTransform * turn;
+            scene_.instances.push_back({placed.mesh, move * placed.transform * turn, placed.material, end});
+        }
     }
 
     /// "repeat": copies on a lattice of count[0] x count[1] x count[2] points `step` apart, each first
@@ -658,13 +668,13 @@ private:
     }
 
     MeshInstance meshFileObject(const Node& n) {
-        checkKeys(n, {"type", "file", "material", "transform", "repeat"});
+        checkKeys(n, {"type", "file", "material", "transform", "end_transform", "repeat"});
         require(n, "file");
         return instanceOf(loadMeshFile(n["file"], std::nullopt), n);
     }
 
     MeshInstance namedMeshObject(const Node& n) {
-        checkKeys(n, {"type", "mesh", "material", "transform", "repeat"});
+        checkKeys(n, {"type", "mesh", "material", "transform", "end_transform", "repeat"});
         require(n, "mesh");
         const Node name = n["mesh"];
         auto it = meshNamed_.find(string(name));
@@ -680,13 +690,13 @@ private:
         require(n, "shape");
         const std::string shape = shapeName(n["shape"]);
         std::vector<std::string> keys = shapeKeys(shape);
-        keys.insert(keys.end(), {"type", "shape", "material", "transform", "repeat"});
+        keys.insert(keys.end(), {"type", "shape", "material", "transform", "end_transform", "repeat"});
         checkKeys(n, keys);
         return ownMesh(generateShape(shape, n), n);
     }
 
     MeshInstance trianglesObject(const Node& n) {
-        checkKeys(n, {"type", "vertices", "indices", "normals", "uvs", "material", "face_materials", "transform", "repeat"});
+        checkKeys(n, {"type", "vertices", "indices", "normals", "uvs", "material", "face_materials", "transform", "end_transform", "repeat"});
         if (n.has("material") && n.has("face_materials"))
             fail(n.path, "\"material\" and \"face_materials\" cannot be combined");
         return ownMesh(inlineTriangles(n), n);
@@ -695,6 +705,12 @@ private:
     void readSphereObject(const Node& n) {
         const Sphere s = sphere(n);
         const glm::mat4 m = optionalTransform(n);
+        if (n.has("end_transform")) {  // a moving sphere is an ellipsoid moving between the two transforms
+            AnalyticObject moving = sphereEllipsoid(s, m);
+            moving.endTransform = sphereEllipsoid(s, transform(n["end_transform"])).transform;
+            scene_.analytics.push_back(moving);
+            return;
+        }
         if (isSimilarity(m)) {
             // A sphere stays a sphere under rotation, uniform scale and translation.
             scene_.spheres.push_back({glm::vec3(m * glm::vec4(s.center, 1.0f)), s.radius * glm::length(glm::vec3(m[0])), s.material});
@@ -705,7 +721,7 @@ private:
     }
 
     Sphere sphere(const Node& n) {
-        checkKeys(n, {"type", "center", "radius", "material", "transform"});
+        checkKeys(n, {"type", "center", "radius", "material", "transform", "end_transform"});
         require(n, "center");
         require(n, "radius");
         return {vec3(n["center"]), positive(n["radius"]), n.has("material") ? materialNamed(n["material"]) : defaultMaterial()};
@@ -738,7 +754,7 @@ private:
         glm::mat4 local(1.0f);
         switch (o.shape) {
         case AnalyticShape::Ellipsoid:
-            checkKeys(n, {"type", "center", "radii", "material", "transform"});
+            checkKeys(n, {"type", "center", "radii", "material", "transform", "end_transform"});
             if (n.has("radii")) {
                 const glm::vec3 radii = vec3(n["radii"]);
                 if (!(radii.x > 0 && radii.y > 0 && radii.z > 0)) fail(n["radii"].path, "radii must be positive");
@@ -747,7 +763,7 @@ private:
             if (n.has("center")) local = glm::translate(glm::mat4(1.0f), vec3(n["center"])) * local;
             break;
         case AnalyticShape::Quadric: {
-            checkKeys(n, {"type", "coefficients", "material", "transform"});
+            checkKeys(n, {"type", "coefficients", "material", "transform", "end_transform"});
             require(n, "coefficients");
             const Node c = n["coefficients"];
             if (!c.value.is_array() || c.value.size() != 10)
@@ -758,7 +774,7 @@ private:
             break;
         }
         case AnalyticShape::Blob: {
-            checkKeys(n, {"type", "balls", "threshold", "material", "transform"});
+            checkKeys(n, {"type", "balls", "threshold", "material", "transform", "end_transform"});
             require(n, "balls");
             const Node balls = n["balls"];
             expectArray(balls);
@@ -780,14 +796,14 @@ private:
             break;
         }
         case AnalyticShape::Torus: {
-            checkKeys(n, {"type", "major_radius", "minor_radius", "material", "transform"});
+            checkKeys(n, {"type", "major_radius", "minor_radius", "material", "transform", "end_transform"});
             if (n.has("major_radius")) o.majorRadius = positive(n["major_radius"]);
             if (n.has("minor_radius")) o.minorRadius = positive(n["minor_radius"]);
             if (o.minorRadius >= o.majorRadius) fail(n.path, "minor_radius must be smaller than major_radius");
             break;
         }
         default: {
-            std::vector<std::string> keys = {"type", "radius", "height", "capped", "material", "transform"};
+            std::vector<std::string> keys = {"type", "radius", "height", "capped", "material", "transform", "end_transform"};
             if (o.shape == AnalyticShape::Hyperboloid) keys.push_back("sheets");
             checkKeys(n, keys);
             const float radius = n.has("radius") ? positive(n["radius"]) : 1.0f;
@@ -801,20 +817,27 @@ private:
         }
         }
         o.transform = optionalTransform(n) * local;
+        if (n.has("end_transform")) o.endTransform = transform(n["end_transform"]) * local;
         o.material = n.has("material") ? materialNamed(n["material"]) : defaultMaterial();
         return o;
     }
 
     MeshInstance instanceOf(uint32_t mesh, const Node& n) const {
         const uint32_t material = n.has("material") ? materialNamed(n["material"]) : MeshInstance::kMeshMaterials;
-        return {mesh, optionalTransform(n), material};
+        return {mesh, optionalTransform(n), material, endTransform(n)};
+    }
+
+    /// A moving object's transform at time 1 ("end_transform"; "transform" is at time 0).
+    std::optional<glm::mat4> endTransform(const Node& n) const {
+        if (!n.has("end_transform")) return std::nullopt;
+        return transform(n["end_transform"]);
     }
 
     /// Generated and inline meshes belong to one object, so its material goes into the mesh itself.
     MeshInstance ownMesh(TriangleMesh mesh, const Node& n) {
         if (mesh.faceMaterial.empty())
             mesh.faceMaterial.assign(mesh.triangles.size(), n.has("material") ? materialNamed(n["material"]) : defaultMaterial());
-        return {addMesh(std::move(mesh)), optionalTransform(n), MeshInstance::kMeshMaterials};
+        return {addMesh(std::move(mesh)), optionalTransform(n), MeshInstance::kMeshMaterials, endTransform(n)};
     }
 
     // ---- CSG
@@ -849,6 +872,7 @@ private:
     uint32_t csgOperand(const Node& n, const glm::mat4& parent, std::optional<uint32_t> material, CsgObject& object) {
         expectObject(n);
         require(n, "type");
+        if (n.has("end_transform")) fail(n["end_transform"].path, "CSG operands cannot move");
         const std::string type = string(n["type"]);
         if (type == "csg") {
             if (++csgDepth_ > 64) fail(n.path, "CSG nesting deeper than 64 levels");

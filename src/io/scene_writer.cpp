@@ -92,6 +92,7 @@ Json analyticJson(const AnalyticObject& a, const std::vector<Material>& material
     Json object = {{"type", nameOf(kAnalyticShapes, twoSheets ? AnalyticShape::Hyperboloid : a.shape)},
                    {"transform", {{"matrix", matrixJson(a.transform)}}},
                    {"material", materials.at(a.material).name}};
+    if (a.endTransform) object["end_transform"] = {{"matrix", matrixJson(*a.endTransform)}};
     if (twoSheets) object["sheets"] = 2;
     if (a.shape == AnalyticShape::Quadric) object["coefficients"] = a.coefficients;
     if (a.shape == AnalyticShape::Blob) {
@@ -113,6 +114,7 @@ Json instanceJson(const MeshInstance& instance, const std::vector<Material>& mat
     Json object = {{"type", "instance"}, {"mesh", "mesh" + std::to_string(instance.mesh)}};
     if (instance.material != MeshInstance::kMeshMaterials) object["material"] = materials.at(instance.material).name;
     object["transform"] = {{"matrix", matrixJson(instance.transform)}};
+    if (instance.endTransform) object["end_transform"] = {{"matrix", matrixJson(*instance.endTransform)}};
     return object;
 }
 
@@ -138,7 +140,8 @@ std::string writeScene(const Scene& scene) {
     Json root;
     root["camera"] = {{"position", array(camera.position)}, {"look_at", array(camera.lookAt)},
                       {"up", array(camera.up)}, {"fov", camera.fovY}, {"aperture", camera.aperture},
-                      {"focus_distance", camera.focusDistance}};
+                      {"focus_distance", camera.focusDistance},
+                      {"shutter", {camera.shutterOpen, camera.shutterClose}}};
     root["image"] = {{"width", scene.image.width}, {"height", scene.image.height}, {"spp", scene.image.samplesPerPixel}};
     root["background"] = array(scene.background);
     root["fog"] = {{"density", scene.fog.density}, {"color", array(scene.fog.color)}};

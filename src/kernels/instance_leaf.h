@@ -14,9 +14,31 @@
 namespace wideray {
 inline namespace WIDERAY_ISA {
 
-/// The ray in the instance's object space.
-inline Ray objectRay(const InstanceRef& instance, const Ray& ray) {
+/// The inverse of the affine transform (row-major 3x4) `a`.
+inline void invertAffine(const double* a, double* inverse) {
+    const double c00 = a[5] * a[10] - a[6] * a[9], c01 = a[6] * a[8] - a[4] * a[10], c02 = a[4] * a[9] - a[5] * a[8];
+    const double invDet = 1.0 / (a[0] * c00 + a[1] * c01 + a[2] * c02);
+    const double r[9] = {c00 * invDet, (a[2] * a[9] - a[1] * a[10]) * invDet, (a[1] * a[6] - a[2] * a[5]) * invDet,
+                         c01 * invDet, (a[0] * a[10] - a[2] * a[8]) * invDet, (a[2] * a[4] - a[0] * a[6]) * invDet,
+                         c02 * invDet, (a[1] * a[8] - a[0] * a[9]) * invDet, (a[0] * a[5] - a[1] * a[4]) * invDet};
+    for (int row = 0; row < 3; ++row) {
+        for (int column = 0; column < 3; ++column) inverse[4 * row + column] = r[3 * row + column];
+        inverse[4 * row + 3] = -(r[3 * row] * a[3] + r[3 * row + 1] * a[7] + r[3 * row + 2] * a[11]);
+    }
+}
+
+/// The ray in the instance's object space (at the ray's time, if the instance moves).
+inline Ray objectRay(const InstanceTable& table, const InstanceRef& instance, const Ray& ray) {
+    double moving[12];
     const double* m = instance.objectFromWorld;
+    if (instance.motion != kInvalidId) {
+        const InstanceMotion& motion = table.motions[instance.motion];
+        double at[12];
+        const double time = ray.time;
+        for (int i = 0; i < 12; ++i) at[i] = (1.0 - time) * motion.worldFromObject[0][i] + time * motion.worldFromObject[1][i];
+        invertAffine(at, moving);
+        m = moving;
+    }
     const double ox = ray.ox, oy = ray.oy, oz = ray.oz, dx = ray.dx, dy = ray.dy, dz = ray.dz;
     Ray local = ray;
     local.ox = float(m[0] * ox + m[1] * oy + m[2] * oz + m[3]);
@@ -34,7 +56,7 @@ template <int N, bool AnyHit>
 [[gnu::noinline]] bool intersectInstance(const InstanceTable& table, uint32_t index, const Ray& ray, Hit& hit,
                                          TraversalCost& cost) {
     const InstanceRef& instance = table.instances[index];
-    const Ray local = objectRay(instance, ray);
+    const Ray local = objectRay(table, instance, ray);
     if (!isValidRay(local)) return false;
     const SceneView<N>& mesh = table.meshes<N>()[instance.mesh];
     Hit inner;

@@ -78,7 +78,7 @@ constexpr int32_t kNoPrim = INT32_MAX;
 /// transposes of their two halves), so that no vector is loaded from scalar stores.
 template <int K, class RayAt>
 [[gnu::always_inline]] inline void loadRayFields(RayAt ray, vfloat<K> fields[8]) {
-    static_assert(sizeof(Ray) == 8 * sizeof(float) && offsetof(Ray, dy) == 4 * sizeof(float));
+    static_assert(offsetof(Ray, tfar) == 7 * sizeof(float) && offsetof(Ray, dy) == 4 * sizeof(float));
     vfloat4 quarters[8][K / 4];
     for (int q = 0; q < K / 4; ++q) {
         __m128 lo[4], hi[4];

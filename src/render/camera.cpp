@@ -32,9 +32,11 @@ CameraModel::CameraModel(const Camera& camera, int width, int height) {
     invHeight_ = 1.0f / float(height);
     lensRadius_ = camera.aperture;
     focusDistance_ = camera.focusDistance > 0.0f ? camera.focusDistance : glm::length(camera.lookAt - camera.position);
+    shutterOpen_ = camera.shutterOpen;
+    shutterClose_ = camera.shutterClose;
 }
 
-Ray CameraModel::generate(float px, float py, glm::vec2 lens) const {
+Ray CameraModel::generate(float px, float py, glm::vec2 lens, float shutter) const {
     float sx = (2.0f * px * invWidth_ - 1.0f) * scaleX_;
     float sy = (1.0f - 2.0f * py * invHeight_) * scaleY_;
     glm::vec3 o = origin_;
@@ -49,6 +51,7 @@ Ray CameraModel::generate(float px, float py, glm::vec2 lens) const {
     Ray r;
     r.ox = o.x; r.oy = o.y; r.oz = o.z;
     r.dx = d.x; r.dy = d.y; r.dz = d.z;
+    r.time = shutterOpen_ + shutter * (shutterClose_ - shutterOpen_);
     return r;
 }
 

@@ -14,8 +14,9 @@ public:
 
     /// The ray through image position (px, py) in pixels, y down; (x + 0.5, y + 0.5) is a pixel center.
     /// `lens` in [0, 1)^2 picks the point on the lens the ray leaves from; (0.5, 0.5) is its center,
-    /// and a pinhole camera ignores it. Directions are unit length.
-    Ray generate(float px, float py, glm::vec2 lens = glm::vec2(0.5f)) const;
+    /// and a pinhole camera ignores it; `shutter` in [0, 1) picks the ray's time in the shutter
+    /// interval. Directions are unit length.
+    Ray generate(float px, float py, glm::vec2 lens = glm::vec2(0.5f), float shutter = 0.0f) const;
     glm::vec3 position() const { return origin_; }
 
 private:
@@ -23,6 +24,7 @@ private:
     float scaleX_, scaleY_;
     float invWidth_, invHeight_;
     float lensRadius_, focusDistance_;
+    float shutterOpen_, shutterClose_;
 };
 
 } // namespace wideray

@@ -65,8 +65,10 @@ void TileRenderer::startPaths(const TileRect& tile, std::vector<PathState>& path
             SampleRng rng(uint32_t(x), uint32_t(y), uint32_t(s), kCameraPurpose);
             const glm::vec2 jitter = spp > 1 ? stratifiedPoint(s, spp, rng) : glm::vec2(0.5f);
             const glm::vec2 lens = stratifiedPoint(int((uint32_t(s) + lensRotation) % uint32_t(spp)), spp, rng);
+            // Times stratified over the pixel's samples too, in an order of their own.
+            const float shutter = (float((uint32_t(s) + pcgHash(lensRotation)) % uint32_t(spp)) + rng.next()) / float(spp);
             PathState path;
-            path.ray = camera_.generate(float(x) + jitter.x, float(y) + jitter.y, lens);
+            path.ray = camera_.generate(float(x) + jitter.x, float(y) + jitter.y, lens, shutter);
             path.pixelX = uint32_t(x);
             path.pixelY = uint32_t(y);
             path.key = uint32_t(s);

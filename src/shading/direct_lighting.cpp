@@ -39,8 +39,9 @@ glm::vec3 uniformSphere(float u1, float u2) {
 
 } // namespace
 
-void sampleLights(const std::vector<Light>& lights, const glm::vec3& position, float epsilon, int areaSampleLimit,
-                  SampleRng& rng, std::vector<LightSample>& out) {
+void sampleLights(const std::vector<Light>& lights, const glm::vec3& position, float epsilon, float time,
+                  int areaSampleLimit, SampleRng& rng, std::vector<LightSample>& out) {
+    const size_t first = out.size();
     for (const Light& light : lights) {
         const glm::vec3 power = light.color * light.intensity;
         switch (light.type) {
@@ -81,6 +82,7 @@ void sampleLights(const std::vector<Light>& lights, const glm::vec3& position, f
         }
         }
     }
+    for (size_t i = first; i < out.size(); ++i) out[i].shadowRay.time = time;
 }
 
 void lightCrossings(const std::vector<Light>& lights, const Ray& ray, float tmax, std::vector<LightCrossing>& out) {

@@ -38,8 +38,8 @@ void lightCrossings(const std::vector<Light>& lights, const Ray& ray, float tmax
 
 /// Appends the samples of every light seen from `position`. An area light gets its `samples` shadow
 /// rays, stratified over its surface, but at most `areaSampleLimit`. Samples from behind a one-sided
-/// light, or from a light closer than 2 `epsilon`, are left out.
-void sampleLights(const std::vector<Light>& lights, const glm::vec3& position, float epsilon, int areaSampleLimit,
-                  SampleRng& rng, std::vector<LightSample>& out);
+/// light, or from a light closer than 2 `epsilon`, are left out. The shadow rays are at `time`.
+void sampleLights(const std::vector<Light>& lights, const glm::vec3& position, float epsilon, float time,
+                  int areaSampleLimit, SampleRng& rng, std::vector<LightSample>& out);
 
 } // namespace wideray

@@ -45,7 +45,7 @@ void FogMedium::addInscattering(const std::vector<Light>& lights, const Ray& ray
         const glm::vec3 point = origin + t * direction;
         const float toViewer = std::exp(-density_ * (t - t0));
         scratch.clear();
-        sampleLights(lights, point, epsilon, 1, rng, scratch);
+        sampleLights(lights, point, epsilon, ray.time, 1, rng, scratch);
         for (const LightSample& light : scratch) {
             const float toLight = transmittance(light.shadowRay, light.distance);
             out.push_back({light.shadowRay, scattering * light.irradiance * (toViewer * toLight), pixelX, pixelY});

@@ -63,7 +63,7 @@ float maxComponent(const glm::vec3& v) { return std::max({v.x, v.y, v.z}); }
 void sampleDirectLight(const ShadingContext& context, const PathState& path, const SurfacePoint& sp,
                        const SampledLobes& lobes, SampleRng& rng, ScatterOutput& out) {
     out.lightScratch.clear();
-    sampleLights(context.scene.lights, sp.position, context.epsilon, INT_MAX, rng, out.lightScratch);
+    sampleLights(context.scene.lights, sp.position, context.epsilon, path.ray.time, INT_MAX, rng, out.lightScratch);
     for (const LightSample& light : out.lightScratch) {
         float lobePdf;
         const PolarizedFactor f = lobes.evaluate(light.direction, lobePdf);
@@ -82,7 +82,8 @@ void continuePath(const ShadingContext& context, const PathState& path, const gl
                   SampleRng& rng, ScatterOutput& out, bool depolarize = false) {
     PathState next = path;
     if (depolarize) next.throughputS = next.throughputP = path.throughput();
-    next.ray = Ray{position.x, position.y, position.z, direction.x, direction.y, direction.z, context.epsilon, INFINITY};
+    next.ray = Ray{position.x, position.y, position.z, direction.x, direction.y, direction.z, context.epsilon, INFINITY,
+                   path.ray.time};
     next.depth = path.depth + 1;
     next.scatterPdf = scatterPdf;
     next.media = media;

@@ -29,7 +29,7 @@ void addDirectLight(const ShadingContext& context, const PathState& path, const 
     const glm::vec3 diffuse = materialColor(material, sp.position, sp.uv) * kInvPi;
     const glm::vec3 weight = path.throughput();
     out.lightScratch.clear();
-    sampleLights(context.scene.lights, sp.position, context.epsilon, INT_MAX, rng, out.lightScratch);
+    sampleLights(context.scene.lights, sp.position, context.epsilon, path.ray.time, INT_MAX, rng, out.lightScratch);
     for (const LightSample& light : out.lightScratch) {
         const float cosine = glm::dot(normal, light.direction);
         if (cosine <= 0.0f) continue;
@@ -58,7 +58,8 @@ void followLobe(const ShadingContext& context, const PathState& path, const glm:
             if (lobe.side * glm::dot(direction, normal) <= 0.0f) continue;
         }
         PathState next = path;
-        next.ray = Ray{position.x, position.y, position.z, direction.x, direction.y, direction.z, context.epsilon, INFINITY};
+        next.ray = Ray{position.x, position.y, position.z, direction.x, direction.y, direction.z, context.epsilon, INFINITY,
+                       path.ray.time};
         next.depth = path.depth + 1;
         next.key = pcgHash(path.key + 0x9e3779b9u * (lobe.firstBranch + uint32_t(i) + 1));
         next.glossySplit = path.glossySplit || count > 1;
