@@ -15,6 +15,8 @@
 #include "render/bench_rays.h"
 #include "render/image_difference.h"
 #include "render_helpers.h"
+#include "io/scene_parser.h"
+#include "scene_errors.h"
 
 namespace wideray {
 namespace {
@@ -110,6 +112,22 @@ TEST(Instancing, AutoMakesTwoLevelWhereCopiesWouldCostMemory) {
     const auto& triangles = static_cast<const TriangleGeometry&>(geometry[0]);
     EXPECT_EQ(triangles.instanceOf(9), 4u);
     EXPECT_EQ(geometry.instances()->placements()[2].sceneInstance, 7u);
+}
+
+TEST(Instancing, RepeatPlacesCopiesAndBadValuesNameTheirKey) {
+    const Scene scene = parseScene(R"({"lights": [{"type": "point", "position": [0, 5, 0]}], "objects": [
+        {"type": "generated", "shape": "cube", "transform": {"translate": [1, 0, 0]},
+         "repeat": {"count": [3, 2, 1], "step": [4, 5, 0], "turn": 30, "seed": 2}}]})", "repeat.json");
+    ASSERT_EQ(scene.instances.size(), 6u);
+    EXPECT_EQ(glm::vec3(scene.instances[5].transform[3]), glm::vec3(9, 5, 0));  // (2, 1, 0) * step + the own translate
+    EXPECT_NE(scene.instances[0].transform, scene.instances[3].transform * glm::translate(glm::mat4(1.0f), glm::vec3(0, -5, 0)));
+    const auto error = testing::objectError;
+    const std::string cube = R"({"type": "generated", "shape": "cube", "repeat": )";
+    EXPECT_NE(error(cube + R"({"count": [0, 1, 1], "step": [1, 1, 1]}})").find("objects[0].repeat.count[0]"), std::string::npos);
+    EXPECT_NE(error(cube + R"({"count": [1000, 1000, 2], "step": [1, 1, 1]}})").find("at most 1000000"), std::string::npos);
+    EXPECT_NE(error(cube + R"({"count": [1, 1, 1]}})").find("step"), std::string::npos);
+    EXPECT_NE(error(R"({"type": "csg", "operation": "union", "operands": [)" + cube + R"({"count": [2, 1, 1], "step": [1, 0, 0]}},
+        {"type": "sphere", "center": [0, 0, 0], "radius": 1}]})").find("cannot be repeated"), std::string::npos);
 }
 
 TEST(Instancing, TenThousandInstancesTakeLittleMoreThanOneMesh) {

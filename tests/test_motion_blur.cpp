@@ -183,6 +183,13 @@ TEST(MotionBlur, BadKeysNameTheirPath) {
                   .find("operands[0].end_transform"),
               std::string::npos);
     EXPECT_NE(error(R"({"type": "heightfield", "end_transform": {}})").find("end_transform"), std::string::npos);
+    // Interpolated entry by entry, a half turn or a mirroring passes through a singular matrix.
+    EXPECT_NE(error(R"({"type": "torus", "end_transform": {"rotate": {"axis": [0, 0, 1], "degrees": 180}}})").find("singular"),
+              std::string::npos);
+    EXPECT_NE(error(R"({"type": "generated", "shape": "cube", "end_transform": {"scale": [-1, 1, 1]}})").find("objects[0].end_transform"),
+              std::string::npos);
+    EXPECT_EQ(error(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "end_transform": {"rotate": {"axis": [0, 1, 0], "degrees": 90}}})"),
+              "no error");
 }
 
 } // namespace

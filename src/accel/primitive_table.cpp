@@ -11,7 +11,8 @@ PrimitiveTable::PrimitiveTable(const SceneGeometry& geometry) {
         const Geometry& item = geometry[g];
         if (item.instances())
             throw InputError("--accel", "", "the course's structures are single-level: trace two-level instances with bvh4, "
-                                            "bvh8 or Embree, or flatten them (--instancing flatten)");
+                                            "bvh8 or Embree, or flatten them (--instancing flatten; moving instances "
+                                            "cannot be flattened)");
         geometries_.push_back(item.user());
         if (const TriangleMesh* mesh = item.triangles()) {
             if (g != 0) throw std::logic_error("PrimitiveTable: triangle meshes must be geometry 0");

@@ -30,7 +30,11 @@ void intersect(const RTCIntersectFunctionNArguments* args) {
     for (unsigned i = 0; i < n; ++i) {
         if (!args->valid[i]) continue;
         Ray ray = rayOf(rays, n, i);
-        Hit current{ray.tfar, 0, 0, RTCHitN_primID(hits, n, i), RTCHitN_geomID(hits, n, i)};
+        // A hit inside an instance compares by the instance's id, which follows all of ours as our
+        // instance geometry follows the others.
+        const unsigned instance = RTCHitN_instID(hits, n, i, 0);
+        Hit current{ray.tfar, 0, 0, RTCHitN_primID(hits, n, i),
+                    instance != RTC_INVALID_GEOMETRY_ID ? instance : RTCHitN_geomID(hits, n, i)};
         float t = 0, u = 0, v = 0;
         if (!geometry.intersect(ray, args->primID, ray.tfar, t, u, v) ||
             !isCloser(t, args->geomID, args->primID, current))

@@ -47,7 +47,7 @@ void addEngineOptions(CLI::App& app, EngineOptions& options) {
 void addInstancingOption(CLI::App& app, std::string& instancing) {
     app.add_option("--instancing", instancing,
                    "Instances of a mesh: two-level (one BVH per mesh, a top-level BVH over the instances), flatten "
-                   "(every instance's triangles copied into one BVH) or auto (two-level where the copies would add "
+                   "(every still instance's triangles copied into one BVH; moving ones stay two-level) or auto (two-level where the copies would add "
                    "65536 triangles or more; flattened for the course's structures)")
         ->check(CLI::IsMember({"auto", "flatten", "two-level"}))
         ->capture_default_str();

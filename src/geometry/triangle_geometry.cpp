@@ -1,6 +1,9 @@
 #include "geometry/triangle_geometry.h"
 
 #include <algorithm>
+#include <cstdint>
+
+#include "core/error.h"
 
 namespace wideray {
 
@@ -21,6 +24,9 @@ TriangleMesh flattenTriangles(const Scene& scene, const std::vector<bool>& twoLe
         vertexCount += mesh.positions.size();
         triangleCount += mesh.triangles.size();
         anyNormals = anyNormals || !mesh.normals.empty();
+        if (vertexCount > UINT32_MAX || triangleCount > UINT32_MAX)
+            throw InputError(scene.file.string(), "", "the flattened instances have more than 2^32 - 1 vertices or triangles; "
+                                                      "trace them two-level (--instancing two-level or auto)");
         anyUvs = anyUvs || !mesh.uvs.empty();
     }
 

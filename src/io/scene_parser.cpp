@@ -632,7 +632,11 @@ private:
     void readPlaced(const Node& n) {
         const MeshInstance placed = (this->*parse)(n);
         if (!n.has("repeat")) return scene_.instances.push_back(placed);
-        for (const auto& [move, turn] : repeats(n["repeat"])) {
+        const Repeat repeat = readRepeat(n["repeat"]);
+        if (scene_.instances.size() + repeat.copies() > kMaxInstances)
+            fail(n["repeat"].path, "more than " + std::to_string(kMaxInstances) + " instances in the scene");
+        for (size_t k = 0; k < repeat.copies(); ++k) {
+            const glm::mat4 move = repeat.move(k), turn = repeat.turn(k);
             std::optional<glm::mat4> end;
             if (placed.endTransform) end = move * *placed.endTransform * turn;
             scene_.instances.push_back({placed.mesh, move * placed.transform * turn, placed.material, end});
@@ -642,29 +646,38 @@ private:
     /// "repeat": copies on a lattice of count[0] x count[1] x count[2] points `step` apart, each first
     /// turned about its object-space y axis by a random angle within +-`turn` degrees (seeded by
     /// `seed`): per copy, the move after the object's transform and the turn before it.
-    std::vector<std::pair<glm::mat4, glm::mat4>> repeats(const Node& n) const {
+    struct Repeat {
+        glm::ivec3 count;
+        glm::vec3 step;
+        float turnDegrees;
+        uint32_t seed;
+
+        size_t copies() const { return size_t(count.x) * size_t(count.y) * size_t(count.z); }
+        glm::mat4 move(size_t k) const {
+            const glm::vec3 at(float(k % size_t(count.x)), float(k / size_t(count.x) % size_t(count.y)),
+                               float(k / (size_t(count.x) * size_t(count.y))));
+            return glm::translate(glm::mat4(1.0f), step * at);
+        }
+        glm::mat4 turn(size_t k) const {
+            const float u = float(pcgHash(uint32_t(k) ^ pcgHash(seed)) >> 8) * 0x1p-24f;  // [0, 1)
+            return glm::rotate(glm::mat4(1.0f), glm::radians(turnDegrees * (2.0f * u - 1.0f)), glm::vec3(0, 1, 0));
+        }
+    };
+
+    Repeat readRepeat(const Node& n) const {
         expectObject(n);
         checkKeys(n, {"count", "step", "turn", "seed"});
         require(n, "count");
         require(n, "step");
         const Node c = n["count"];
         if (!c.value.is_array() || c.value.size() != 3) fail(c.path, "expected [nx, ny, nz], got " + describe(c.value));
-        const glm::ivec3 count(integer(c[size_t(0)], 1, 1000000), integer(c[size_t(1)], 1, 1000000), integer(c[size_t(2)], 1, 1000000));
-        if (int64_t(count.x) * count.y * count.z > 1000000) fail(c.path, "at most 1000000 copies");
-        const glm::vec3 step = vec3(n["step"]);
-        const float turn = n.has("turn") ? nonNegative(n["turn"]) : 0.0f;
-        const uint32_t seed = n.has("seed") ? uint32_t(integer(n["seed"], 0, 1 << 30)) : 0u;
-        std::vector<std::pair<glm::mat4, glm::mat4>> copies;
-        copies.reserve(size_t(count.x) * count.y * count.z);
-        for (int k = 0; k < count.z; ++k)
-            for (int j = 0; j < count.y; ++j)
-                for (int i = 0; i < count.x; ++i) {
-                    const uint32_t index = uint32_t(copies.size());
-                    const float u = float(pcgHash(index ^ pcgHash(seed)) >> 8) * 0x1p-24f;  // [0, 1)
-                    copies.emplace_back(glm::translate(glm::mat4(1.0f), step * glm::vec3(i, j, k)),
-                                        glm::rotate(glm::mat4(1.0f), glm::radians(turn * (2.0f * u - 1.0f)), glm::vec3(0, 1, 0)));
-                }
-        return copies;
+        Repeat r;
+        r.count = {integer(c[size_t(0)], 1, 1000000), integer(c[size_t(1)], 1, 1000000), integer(c[size_t(2)], 1, 1000000)};
+        if (r.copies() > 1000000) fail(c.path, "at most 1000000 copies");
+        r.step = vec3(n["step"]);
+        r.turnDegrees = n.has("turn") ? nonNegative(n["turn"]) : 0.0f;
+        r.seed = n.has("seed") ? uint32_t(integer(n["seed"], 0, 1 << 30)) : 0u;
+        return r;
     }
 
     MeshInstance meshFileObject(const Node& n) {
@@ -708,6 +721,7 @@ private:
         if (n.has("end_transform")) {  // a moving sphere is an ellipsoid moving between the two transforms
             AnalyticObject moving = sphereEllipsoid(s, m);
             moving.endTransform = sphereEllipsoid(s, transform(n["end_transform"])).transform;
+            checkMotion(n["end_transform"], moving.transform, *moving.endTransform);
             scene_.analytics.push_back(moving);
             return;
         }
@@ -817,7 +831,10 @@ private:
         }
         }
         o.transform = optionalTransform(n) * local;
-        if (n.has("end_transform")) o.endTransform = transform(n["end_transform"]) * local;
+        if (n.has("end_transform")) {
+            o.endTransform = transform(n["end_transform"]) * local;
+            checkMotion(n["end_transform"], o.transform, *o.endTransform);
+        }
         o.material = n.has("material") ? materialNamed(n["material"]) : defaultMaterial();
         return o;
     }
@@ -830,7 +847,21 @@ private:
     /// A moving object's transform at time 1 ("end_transform"; "transform" is at time 0).
     std::optional<glm::mat4> endTransform(const Node& n) const {
         if (!n.has("end_transform")) return std::nullopt;
-        return transform(n["end_transform"]);
+        const glm::mat4 end = transform(n["end_transform"]);
+        checkMotion(n["end_transform"], optionalTransform(n), end);
+        return end;
+    }
+
+    /// The interpolated transforms must stay well invertible: their determinant (a cubic in the time)
+    /// keeps the sign it has at the start and a millionth of its size, checked at 257 times.
+    void checkMotion(const Node& end, const glm::mat4& start, const glm::mat4& stop) const {
+        const double first = glm::determinant(glm::dmat3(start));
+        for (int i = 0; i <= 256; ++i) {
+            const double t = double(i) / 256.0;
+            if (!(glm::determinant((1.0 - t) * glm::dmat3(start) + t * glm::dmat3(stop)) * first > 1e-6 * first * first))
+                fail(end.path, "the motion passes through a (nearly) singular transform (from transform to end_transform the "
+                               "object would mirror or flatten, e.g. a turn by 180 degrees)");
+        }
     }
 
     /// Generated and inline meshes belong to one object, so its material goes into the mesh itself.
@@ -875,7 +906,7 @@ private:
         if (n.has("end_transform")) fail(n["end_transform"].path, "CSG operands cannot move");
         const std::string type = string(n["type"]);
         if (type == "csg") {
-            if (++csgDepth_ > 64) fail(n.path, "CSG nesting deeper than 64 levels");
+            if (++csgDepth_ >= 64) fail(n.path, "CSG nesting deeper than 64 levels");
             const uint32_t index = csgOperation(n, parent, material, object);
             --csgDepth_;
             return index;
@@ -924,6 +955,7 @@ private:
     std::map<std::filesystem::path, uint32_t> meshOfFile_;
     std::set<std::string> materialPrefixes_;
     int csgDepth_ = 0;
+    static constexpr size_t kMaxInstances = 10000000;
     std::map<std::pair<std::filesystem::path, bool>, std::shared_ptr<const Image>> textureImages_;
 };
 

@@ -18,8 +18,8 @@ namespace {
 
 constexpr int kTileSize = 16;
 
-Ray rayFrom(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar) {
-    return {o.x, o.y, o.z, d.x, d.y, d.z, tnear, tfar};
+Ray rayFrom(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar, float time) {
+    return {o.x, o.y, o.z, d.x, d.y, d.z, tnear, tfar, time};
 }
 
 constexpr int kFirstBounce = 2, kLastBounce = 4;
@@ -115,11 +115,11 @@ BenchRays makeBenchRays(const Scene& scene, const Tracer& reference, int width, 
         glm::vec3 dir(ray.dx, ray.dy, ray.dz);
         glm::vec3 toLight = light - sp.position;
         float dist = glm::length(toLight);
-        if (dist > tnear) out.shadow.push_back(rayFrom(sp.position, toLight / dist, tnear, dist));
+        if (dist > tnear) out.shadow.push_back(rayFrom(sp.position, toLight / dist, tnear, dist, ray.time));
         glm::vec3 n = glm::dot(sp.geometricNormal, dir) < 0.0f ? sp.geometricNormal : -sp.geometricNormal;
         SampleRng rng(pixelOf[i] % uint32_t(width), pixelOf[i] / uint32_t(width), 0, 7);
         float u1 = rng.next(), u2 = rng.next();
-        out.diffuse.push_back(rayFrom(sp.position, cosineDirection(n, u1, u2), tnear, INFINITY));
+        out.diffuse.push_back(rayFrom(sp.position, cosineDirection(n, u1, u2), tnear, INFINITY, ray.time));
     }
     out.bounce = bounceRays(scene, reference, width, height);
     return out;
