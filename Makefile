@@ -2,11 +2,13 @@
 # (they install the missing packages first).
 BUILD ?= build
 ASAN_BUILD ?= build-asan
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 180
 JOBS ?= $(shell nproc)
 SCENE ?= scenes/default.json
 GENERATOR := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
 
-.PHONY: all deps configure build run test sanitize bench bench-accelerators gallery install clean
+.PHONY: all deps configure build run test sanitize fuzz bench bench-accelerators gallery install clean
 
 all: build
 
@@ -35,6 +37,14 @@ sanitize: deps
 	cmake -S . -B $(ASAN_BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWIDERAY_SANITIZE=ON -DWIDERAY_BENCHMARKS=OFF
 	cmake --build $(ASAN_BUILD) -j $(JOBS) --target wideray_tests wideray
 	ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp UBSAN_OPTIONS=print_stacktrace=1 ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
+
+## Every libFuzzer harness (fuzz/) for FUZZ_SECONDS each (or runs:N inputs from a fixed seed), built with clang, ASan and UBSan; crashes
+## and the corpus go to out/fuzz/ (scripts/fuzz.sh, docs/robustness.md)
+fuzz: deps
+	@scripts/install-deps.sh clang-14 libclang-rt-14-dev
+	CC=clang-14 CXX=clang++-14 cmake -S . -B $(FUZZ_BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWIDERAY_FUZZ=ON -DWIDERAY_TESTS=OFF -DWIDERAY_BENCHMARKS=OFF
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target scene_json_fuzzer trace_scene_fuzzer
+	ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp UBSAN_OPTIONS=print_stacktrace=1 scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 ## Our kernels (on our fast and high quality builds) against Embree's (on its medium and high quality
 ## builds) on the shared meshes, framed

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages wideray builds with, if any is missing. As root it runs apt-get;
+# Installs the Debian 12 packages wideray builds with, and any packages named as arguments (make fuzz:
+# clang-14 libclang-rt-14-dev), if any is missing. As root it runs apt-get;
 # otherwise it prints the exact command to run and fails.
 set -euo pipefail
 
@@ -8,6 +9,7 @@ packages=(
   libembree-dev libtbb-dev libglm-dev libopenimageio-dev
   nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev libstb-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  "$@"
 )
 
 missing=()
