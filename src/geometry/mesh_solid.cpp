@@ -48,6 +48,13 @@ bool lineTriangle(const glm::dvec3& o, int kx, int ky, int kz, const glm::dvec3&
     return true;
 }
 
+/// A triangle the line meets.
+struct LineHit {
+    double t;
+    int side;  ///< +1 against the outward normal, -1 along it
+    SolidCrossing hit;
+};
+
 } // namespace
 
 MeshSolid::MeshSolid(const std::vector<TriangleMesh>& meshes, const MeshInstance& instance)
@@ -91,12 +98,9 @@ void MeshSolid::crossings(const Ray& ray, SolidCrossings& out) const {
     if (d[kz] < 0.0) std::swap(kx, ky);
     const glm::dvec3 shear(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
 
-    struct Candidate {
-        double t;
-        int side;  ///< +1 against the outward normal, -1 along it
-        SolidCrossing hit;
-    };
-    std::vector<Candidate> hits;
+    // Per thread, reused: no allocation per ray once it has grown (crossings never recurse).
+    thread_local std::vector<LineHit> hits;
+    hits.clear();
     const TriangleMesh& mesh = *geometry_.triangles();
     uint32_t stack[64];
     int top = 0;
@@ -119,7 +123,7 @@ void MeshSolid::crossings(const Ray& ray, SolidCrossings& out) const {
             hits.push_back({t, side, {t, side > 0, order_[i], float(u), float(v)}});
         }
     }
-    std::sort(hits.begin(), hits.end(), [](const Candidate& a, const Candidate& b) {
+    std::sort(hits.begin(), hits.end(), [](const LineHit& a, const LineHit& b) {
         return a.t != b.t ? a.t < b.t : a.hit.primId < b.hit.primId;
     });
     int count = 0;
