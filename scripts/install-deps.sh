@@ -9,6 +9,7 @@ packages=(
   libembree-dev libtbb-dev libglm-dev libopenimageio-dev
   nlohmann-json3-dev libtinyobjloader-dev libtinygltf-dev libstb-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libopenmpi-dev openmpi-bin
   "$@"
 )
 

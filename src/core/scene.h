@@ -26,6 +26,18 @@ struct Camera {
     float shutterOpen = 0.0f, shutterClose = 0.0f;  ///< the times within [0, 1] the camera's rays sample
 };
 
+/// The camera at one frame of an animation (core/camera_path.h interpolates between keys).
+struct CameraKey {
+    int frame = 0;
+    Camera camera;
+};
+
+/// A camera path over a range of frames: `render` writes one image per frame (NAME_0001.png, ...).
+struct Animation {
+    int firstFrame = 1, lastFrame = 1;  ///< inclusive
+    std::vector<CameraKey> keys;        ///< at least one, frames strictly increasing
+};
+
 struct ImageSettings {
     int width = 640;
     int height = 480;
@@ -172,6 +184,7 @@ struct RenderSettings {
 struct Scene {
     std::filesystem::path file;  ///< where it was loaded from (for messages)
     Camera camera;
+    std::optional<Animation> animation;  ///< a moving camera; none: one still image
     ImageSettings image;
     glm::vec3 background{0.0f};
     Fog fog;

@@ -16,6 +16,7 @@
 #include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/camera_path.h"
 #include "core/random.h"
 #include "io/image_io.h"
 #include "io/json_document.h"
@@ -35,8 +36,9 @@ public:
 
     Scene read(const Json& json) {
         const Node root{json, ""};
-        checkKeys(root, {"camera", "image", "background", "fog", "render", "materials", "lights", "meshes", "objects"});
-        if (root.has("camera")) readCamera(root["camera"]);
+        checkKeys(root, {"camera", "animation", "image", "background", "fog", "render", "materials", "lights", "meshes",
+                         "objects"});
+        readCameraAndAnimation(root);
         if (root.has("image")) readImage(root["image"]);
         if (root.has("background")) scene_.background = color(root["background"]);
         if (root.has("fog")) readFog(root["fog"]);
@@ -48,6 +50,16 @@ public:
         readObjects(root["objects"]);
         assignDefaultMaterial();
         return std::move(scene_);
+    }
+
+    /// The frames the scene's animation renders; none for a still scene. Reads "camera" and
+    /// "animation" alone, checked as read() checks them.
+    std::optional<FrameRange> readFrames(const Json& json) {
+        const Node root{json, ""};
+        expectObject(root);
+        readCameraAndAnimation(root);
+        if (!scene_.animation) return std::nullopt;
+        return FrameRange{scene_.animation->firstFrame, scene_.animation->lastFrame};
     }
 
 private:
@@ -66,9 +78,16 @@ private:
 
     // ---- camera, image, fog, render settings
 
-    void readCamera(const Node& n) {
-        checkKeys(n, {"position", "look_at", "up", "fov", "aperture", "focus_distance", "shutter"});
-        Camera& camera = scene_.camera;
+    void readCameraAndAnimation(const Node& root) {
+        if (root.has("camera")) scene_.camera = camera(root["camera"], scene_.camera, {});
+        if (root.has("animation")) readAnimation(root["animation"]);
+    }
+
+    /// The camera at `n`: `camera` with the keys `n` gives.
+    Camera camera(const Node& n, Camera camera, const std::vector<std::string>& otherKeys) {
+        std::vector<std::string> keys = {"position", "look_at", "up", "fov", "aperture", "focus_distance", "shutter"};
+        keys.insert(keys.end(), otherKeys.begin(), otherKeys.end());
+        checkKeys(n, keys);
         if (n.has("position")) camera.position = vec3(n["position"]);
         if (n.has("look_at")) camera.lookAt = vec3(n["look_at"]);
         if (n.has("up")) camera.up = nonZeroVec3(n["up"]);
@@ -85,10 +104,65 @@ private:
             camera.shutterOpen = shutter.x;
             camera.shutterClose = shutter.y;
         }
+        if (const char* problem = viewProblem(camera)) fail(n.path, problem);
+        return camera;
+    }
+
+    static const char* viewProblem(const Camera& camera) {
         const glm::vec3 view = camera.lookAt - camera.position;
-        if (view == glm::vec3(0.0f)) fail(n.path, "look_at must differ from position");
-        if (glm::length(glm::cross(glm::normalize(view), glm::normalize(camera.up))) < 1e-6f)
-            fail(n.path, "up must not be parallel to the viewing direction");
+        if (!(glm::dot(view, view) > 0.0f)) return "look_at must differ from position";
+        if (!(glm::length(glm::cross(glm::normalize(view), glm::normalize(camera.up))) >= 1e-6f))
+            return "up must not be parallel to the viewing direction";
+        return nullptr;
+    }
+
+    /// "animation": {"frames": [first, last], "keyframes": [{"frame": F, camera keys...}, ...]} or
+    /// {"cameras": [camera, ...], "frames": ...}: one camera per frame.
+    void readAnimation(const Node& n) {
+        checkKeys(n, {"frames", "keyframes", "cameras"});
+        if (n.has("keyframes") == n.has("cameras")) fail(n.path, "expected either \"keyframes\" or \"cameras\"");
+        Animation animation;
+        const bool keyframes = n.has("keyframes");
+        const Node list = n[keyframes ? "keyframes" : "cameras"];
+        expectArray(list);
+        if (list.value.empty()) fail(list.path, "must not be empty");
+        if (list.value.size() > size_t(kLastFrame) + 1) fail(list.path, "has more entries than there are frames");
+        int first = 1;
+        if (n.has("frames")) {
+            const Node frames = n["frames"];
+            if (!frames.value.is_array() || frames.value.size() != 2)
+                fail(frames.path, "expected [first, last], got " + describe(frames.value));
+            first = integer(frames[size_t(0)], 0, kLastFrame);
+            animation.lastFrame = integer(frames[size_t(1)], first, kLastFrame);
+        }
+        animation.firstFrame = first;
+        for (size_t i = 0; i < list.value.size(); ++i) {
+            const Node entry = list[i];
+            CameraKey key;
+            if (keyframes) {
+                require(entry, "frame");
+                key.frame = integer(entry["frame"], 0, kLastFrame);
+                if (!animation.keys.empty() && key.frame <= animation.keys.back().frame)
+                    fail(entry["frame"].path, "keyframes must come in increasing frame order");
+            } else {
+                if (first + int64_t(i) > kLastFrame) fail(entry.path, "lies beyond frame " + std::to_string(kLastFrame));
+                key.frame = first + int(i);
+            }
+            key.camera = camera(entry, scene_.camera, keyframes ? std::vector<std::string>{"frame"} : std::vector<std::string>{});
+            animation.keys.push_back(key);
+        }
+        if (!n.has("frames")) {
+            animation.firstFrame = animation.keys.front().frame;
+            animation.lastFrame = animation.keys.back().frame;
+        } else if (!keyframes && animation.keys.back().frame != animation.lastFrame) {
+            fail(n["frames"].path, "covers " + std::to_string(animation.lastFrame - first + 1) + " frames but \"cameras\" lists " +
+                                       std::to_string(animation.keys.size()));
+        }
+        // The spline between valid keys can still pass a camera through its look_at point.
+        for (int frame = animation.firstFrame; frame <= animation.lastFrame; ++frame)
+            if (const char* problem = viewProblem(cameraAtFrame(animation, frame)))
+                fail(n.path, "the camera at frame " + std::to_string(frame) + ": " + problem);
+        scene_.animation = std::move(animation);
     }
 
     void readImage(const Node& n) {
@@ -966,12 +1040,22 @@ Scene parseScene(const std::string& jsonText, const std::filesystem::path& file)
     return SceneReader(file).read(json);
 }
 
-Scene loadScene(const std::filesystem::path& file) {
+namespace {
+
+std::string readSceneText(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
     if (!in) throw InputError(file.string(), "", "cannot open scene file");
     std::ostringstream text;
     text << in.rdbuf();
-    return parseScene(text.str(), file);
+    return text.str();
+}
+
+} // namespace
+
+Scene loadScene(const std::filesystem::path& file) { return parseScene(readSceneText(file), file); }
+
+std::optional<FrameRange> loadSceneFrames(const std::filesystem::path& file) {
+    return SceneReader(file).readFrames(parseJson(readSceneText(file), file.string()));
 }
 
 } // namespace wideray

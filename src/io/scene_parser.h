@@ -1,6 +1,7 @@
 #pragma once
 // Reading and writing scene files (JSON; the format is described in docs/scene-format.md).
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "core/scene.h"
@@ -9,6 +10,17 @@ namespace wideray {
 
 /// Reads and parses a scene file. Throws InputError for anything wrong with it or the meshes it uses.
 Scene loadScene(const std::filesystem::path& file);
+
+/// The last frame number an animation may have (frames are 0..kLastFrame).
+inline constexpr int kLastFrame = 999999;
+
+struct FrameRange {
+    int first, last;  ///< inclusive
+};
+
+/// The frames of a scene file's animation, without loading its meshes; none for a still scene.
+/// Throws InputError as loadScene does for anything wrong in its "camera" or "animation".
+std::optional<FrameRange> loadSceneFrames(const std::filesystem::path& file);
 
 /// Parses scene JSON. `file` names the scene in error messages, and relative mesh paths are
 /// resolved against its folder. Throws InputError naming "line L, column C" for JSON syntax errors

@@ -128,6 +128,12 @@ Json csgJson(const CsgObject& csg, uint32_t index, const std::vector<Material>& 
     return {{"type", "csg"}, {"operation", nameOf(kCsgOperations, node.operation)}, {"operands", std::move(operands)}};
 }
 
+Json cameraJson(const Camera& camera) {
+    return {{"position", array(camera.position)}, {"look_at", array(camera.lookAt)}, {"up", array(camera.up)},
+            {"fov", camera.fovY}, {"aperture", camera.aperture}, {"focus_distance", camera.focusDistance},
+            {"shutter", {camera.shutterOpen, camera.shutterClose}}};
+}
+
 } // namespace
 
 std::string writeScene(const Scene& scene) {
@@ -136,12 +142,17 @@ std::string writeScene(const Scene& scene) {
         if (m.name.empty() || !names.insert(m.name).second)
             throw std::invalid_argument("writeScene: material names must be unique and non-empty (\"" + m.name + "\")");
 
-    const Camera& camera = scene.camera;
     Json root;
-    root["camera"] = {{"position", array(camera.position)}, {"look_at", array(camera.lookAt)},
-                      {"up", array(camera.up)}, {"fov", camera.fovY}, {"aperture", camera.aperture},
-                      {"focus_distance", camera.focusDistance},
-                      {"shutter", {camera.shutterOpen, camera.shutterClose}}};
+    root["camera"] = cameraJson(scene.camera);
+    if (const std::optional<Animation>& animation = scene.animation) {
+        Json keys = Json::array();
+        for (const CameraKey& key : animation->keys) {
+            Json k = cameraJson(key.camera);
+            k["frame"] = key.frame;
+            keys.push_back(std::move(k));
+        }
+        root["animation"] = {{"frames", {animation->firstFrame, animation->lastFrame}}, {"keyframes", std::move(keys)}};
+    }
     root["image"] = {{"width", scene.image.width}, {"height", scene.image.height}, {"spp", scene.image.samplesPerPixel}};
     root["background"] = array(scene.background);
     root["fog"] = {{"density", scene.fog.density}, {"color", array(scene.fog.color)}};

@@ -4,14 +4,25 @@
 // so threads share a film without locks; the counts are atomic.
 #include <atomic>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "core/image.h"
 #include "render/render_options.h"
+#include "render/tile_order.h"
 
 namespace wideray {
+
+/// What a film holds for some of its tiles: their pixels (all channels) and, for the cost AOV, their
+/// per-pixel costs, tile after tile and row by row inside each tile, with the rays the film counted.
+/// The share of an image that one MPI rank renders and sends to the rank that writes the image.
+struct FilmTiles {
+    std::vector<float> pixels;
+    std::vector<uint32_t> cost;
+    uint64_t primaryRays = 0, secondaryRays = 0, shadowRays = 0;
+};
 
 class Film {
 public:
@@ -34,6 +45,12 @@ public:
     void countPrimaryRays(uint64_t n) { primaryRays_ += n; }
     void countSecondaryRays(uint64_t n) { secondaryRays_ += n; }
     void countShadowRays(uint64_t n) { shadowRays_ += n; }
+
+    /// The values of `tiles`, and every ray this film counted.
+    FilmTiles extract(std::span<const TileRect> tiles) const;
+    /// Sets the values of `tiles` from `part` (as extract gave them) and adds its rays. Throws
+    /// std::invalid_argument when the part's sizes do not fit the tiles.
+    void insert(std::span<const TileRect> tiles, const FilmTiles& part);
 
     /// The finished image (cost: a heatmap scaled to the largest pixel cost); the counts go to `stats`.
     Image finish(RenderStats& stats);
