@@ -22,7 +22,7 @@ seconds() {  # ranks threads args...
   if [ "$ranks" = 0 ]; then
     "$build/wideray" render "$@" --threads "$threads" -o "$work/out" >/dev/null 2>&1
   else
-    mpirun --allow-run-as-root --oversubscribe -np "$ranks" "$build/wideray" render "$@" --threads "$threads" \
+    mpirun --allow-run-as-root --oversubscribe --bind-to none -np "$ranks" "$build/wideray" render "$@" --threads "$threads" \
       -o "$work/out" >/dev/null 2>&1
   fi
   end=$(date +%s.%N)

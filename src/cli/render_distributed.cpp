@@ -1,8 +1,11 @@
 // wideray render under mpirun: the batch's frames (or, when there are fewer frames than ranks, runs of
 // their tiles) are work items that rank 0 hands out (mpi/distributed_render.h); rank 0 writes the images.
+#include <sched.h>
+
 #include <cstdio>
 #include <optional>
 #include <set>
+#include <thread>
 
 #include <fmt/core.h>
 
@@ -71,6 +74,17 @@ private:
     size_t loadedScene_ = 0;
 };
 
+/// mpirun binds each rank to one core when it starts at most 2 ranks, which leaves a rank's oneTBB
+/// threads one core to share.
+void warnIfBoundToOneCore() {
+    cpu_set_t cpus;
+    if (sched_getaffinity(0, sizeof(cpus), &cpus) != 0) return;
+    if (CPU_COUNT(&cpus) == 1 && std::thread::hardware_concurrency() > 1)
+        fmt::print(stderr, "warning: rank 0 may run on 1 of this machine's {} cores (mpirun binds ranks to cores by "
+                           "default); pass --bind-to none to mpirun so that each rank's threads use them all\n",
+                   std::thread::hardware_concurrency());
+}
+
 } // namespace
 
 int renderWithMpi(const RenderArgs& args) {
@@ -80,6 +94,7 @@ int renderWithMpi(const RenderArgs& args) {
             fmt::print(stderr, "error: --compare-backends renders in one process; run it without mpirun\n");
         return 1;
     }
+    if (session.rank() == 0) warnIfBoundToOneCore();
     const std::vector<FrameJob> jobs = frameJobs(args);
     PartRenderer renderer(args, jobs);
     std::set<size_t> failedScenes;
@@ -87,11 +102,12 @@ int renderWithMpi(const RenderArgs& args) {
 
     DistributedBatch batch;
     batch.jobs = uint32_t(jobs.size());
+    batch.progress = true;
     batch.renderPart = [&](const WorkItem& item) { return renderer.render(item); };
     batch.frameDone = [&](uint32_t j, Image&& image, const FrameSummary& summary) {
         const FrameJob& job = jobs[j];
         const std::string& file = args.scenes[job.scene];
-        const FramePart& d = *summary.description;
+        const FramePart& d = summary.description;
         FrameLine line{frameLabel(file, job.frame), d.width, d.height, d.samplesPerPixel, d.triangles,
                        d.accelName, d.engine, summary.slowestBuild, summary.stats, summary.ranks,
                        outputPath(args, file, job.frame)};

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
+#include <deque>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -11,9 +13,11 @@
 #include <thread>
 #include <vector>
 
+#include <fmt/core.h>
 #include <mpi.h>
 
 #include "mpi/part_message.h"
+#include "render/progress.h"
 
 namespace wideray {
 namespace {
@@ -29,14 +33,15 @@ void check(int rc, const char* call) {
 }
 
 /// Waits for a message without spinning: OpenMPI's blocking receive polls on a core, which a rank of
-/// an oversubscribed job would take from the render threads of its own or another rank.
+/// an oversubscribed job would take from the render threads of its own or another rank. The pause
+/// between polls grows from 20 us (a reply that is on its way) to 2 ms (a rank still rendering).
 MPI_Status waitFor(int source, int tag) {
-    for (;;) {
+    for (auto pause = std::chrono::microseconds(20);; pause = std::min(pause * 2, std::chrono::microseconds(2000))) {
         int arrived = 0;
         MPI_Status status;
         check(MPI_Iprobe(source, tag, MPI_COMM_WORLD, &arrived, &status), "MPI_Iprobe");
         if (arrived) return status;
-        std::this_thread::sleep_for(std::chrono::microseconds(100));
+        std::this_thread::sleep_for(pause);
     }
 }
 
@@ -61,11 +66,81 @@ std::vector<std::byte> receiveBytes(int source, int tag) {
     return bytes;
 }
 
+/// Rank 0's thread for the batch's frameDone and frameFailed: writing an image takes long (a quarter
+/// second for a megapixel PNG), and the ranks asking for work must not wait for it. At most kQueued
+/// frames wait to be written; beyond that the writer is what limits the batch, and done() waits.
+class FrameOutbox {
+public:
+    explicit FrameOutbox(const DistributedBatch& batch) : batch_(batch), thread_([this] { run(); }) {}
+    ~FrameOutbox() {
+        {
+            std::lock_guard lock(mutex_);
+            closed_ = true;
+        }
+        changed_.notify_all();
+        thread_.join();
+    }
+
+    void done(uint32_t job, Image&& image, FrameSummary&& summary) {
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [&] { return queue_.size() < kQueued; });
+        queue_.push_back({job, std::move(image), std::move(summary), {}, 0});
+        changed_.notify_all();
+    }
+    void failed(uint32_t job, const std::string& message, int rank) {
+        std::lock_guard lock(mutex_);
+        queue_.push_back({job, std::nullopt, {}, message, rank});
+        changed_.notify_all();
+    }
+
+private:
+    static constexpr size_t kQueued = 4;
+    struct Entry {
+        uint32_t job;
+        std::optional<Image> image;  ///< none: the job failed
+        FrameSummary summary;
+        std::string message;
+        int rank;
+    };
+
+    void run() {
+        for (;;) {
+            std::unique_lock lock(mutex_);
+            changed_.wait(lock, [&] { return closed_ || !queue_.empty(); });
+            if (queue_.empty()) return;
+            Entry entry = std::move(queue_.front());
+            queue_.pop_front();
+            lock.unlock();
+            changed_.notify_all();
+            if (!entry.image) {
+                batch_.frameFailed(entry.job, entry.message, entry.rank);
+                continue;
+            }
+            try {
+                batch_.frameDone(entry.job, std::move(*entry.image), entry.summary);
+            } catch (const std::exception& e) {
+                batch_.frameFailed(entry.job, e.what(), 0);
+            }
+        }
+    }
+
+    const DistributedBatch& batch_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    std::deque<Entry> queue_;
+    bool closed_ = false;
+    std::thread thread_;
+};
+
 /// Rank 0's book of the batch: the items not yet handed out, and each frame's parts as they come in.
 /// Its main thread (for the other ranks) and its rendering thread use it at once.
 class Dispatcher {
 public:
-    Dispatcher(const DistributedBatch& batch, uint32_t parts) : batch_(batch), parts_(parts), jobs_(batch.jobs) {}
+    Dispatcher(const DistributedBatch& batch, uint32_t parts, int ranks, FrameOutbox& outbox)
+        : batch_(batch), parts_(parts), jobs_(batch.jobs), outbox_(outbox),
+          progress_(batch.progress, fmt::format("{} frame{} on {} rank{}", batch.jobs, batch.jobs == 1 ? "" : "s", ranks,
+                                                ranks == 1 ? "" : "s"),
+                    size_t(batch.jobs) * parts) {}
 
     /// The next item, skipping frames that failed; none once all are handed out.
     std::optional<WorkItem> next() {
@@ -85,9 +160,10 @@ public:
     }
 
     void finished(int rank, FramePart&& part) {
-        std::lock_guard lock(mutex_);
+        std::unique_lock lock(mutex_);
         const uint32_t job = part.item.job;
         if (job >= batch_.jobs) throw std::runtime_error("rank " + std::to_string(rank) + " sent a part of no job");
+        progress_.tileDone();
         Job& j = jobs_[job];
         if (j.failed || j.done) return;
         try {
@@ -97,13 +173,15 @@ public:
             FrameSummary summary;
             Image image = j.assembler->finish(summary.stats);
             summary.stats.seconds = std::chrono::duration<double>(Clock::now() - j.start).count();
-            summary.description = &j.assembler->description();
+            summary.description = j.assembler->description();
             summary.slowestBuild = j.assembler->slowestBuild();
             summary.ranks = int(j.ranks.size());
-            batch_.frameDone(job, std::move(image), summary);
             j.done = true;
             j.assembler.reset();
+            lock.unlock();
+            outbox_.done(job, std::move(image), std::move(summary));
         } catch (const std::exception& e) {
+            if (!lock.owns_lock()) lock.lock();
             fail(job, e.what(), 0);
         }
     }
@@ -111,6 +189,7 @@ public:
     void failed(int rank, const WorkItem& item, const std::string& message) {
         std::lock_guard lock(mutex_);
         if (item.job >= batch_.jobs) throw std::runtime_error("rank " + std::to_string(rank) + " failed on no job");
+        progress_.tileDone();
         fail(item.job, message, rank);
     }
 
@@ -122,19 +201,22 @@ private:
         bool failed = false, done = false;
     };
 
+    /// With the lock held.
     void fail(uint32_t job, const std::string& message, int rank) {
         Job& j = jobs_[job];
         if (j.failed || j.done) return;
         j.failed = true;
         j.assembler.reset();
-        batch_.frameFailed(job, message, rank);
+        outbox_.failed(job, message, rank);
     }
 
     const DistributedBatch& batch_;
     const uint32_t parts_;
     std::mutex mutex_;
     std::vector<Job> jobs_;
+    FrameOutbox& outbox_;
     uint32_t job_ = 0, part_ = 0;
+    ProgressReporter progress_;  ///< items done, on stderr
 };
 
 /// Rank 0's own share: items rendered until none are left.
@@ -149,7 +231,8 @@ void renderOwnItems(const DistributedBatch& batch, Dispatcher& dispatcher) {
 }
 
 void serveAndRender(const MpiSession& session, const DistributedBatch& batch) {
-    Dispatcher dispatcher(batch, partsPerFrame(batch.jobs, session.size()));
+    FrameOutbox outbox(batch);
+    Dispatcher dispatcher(batch, partsPerFrame(batch.jobs, session.size()), session.size(), outbox);
     std::thread own([&] { renderOwnItems(batch, dispatcher); });
     struct Join {
         std::thread& thread;

@@ -31,19 +31,22 @@ private:
 
 /// A frame that rank 0 has joined from its parts.
 struct FrameSummary {
-    RenderStats stats;      ///< the rays of every part; seconds: from handing out its first part to the last part in
-    const FramePart* description;  ///< size, samples, triangles, names (no film values)
+    RenderStats stats;        ///< the rays of every part; seconds: from handing out its first part to the last part in
+    FramePart description;    ///< size, samples, triangles, names (no film values)
     double slowestBuild = 0;  ///< the longest any rank took to build the structure for it
     int ranks = 0;            ///< how many ranks rendered parts of it
 };
 
 struct DistributedBatch {
     uint32_t jobs = 0;
+    bool progress = false;  ///< rank 0 reports the share of items done on stderr
     /// Renders a work item (every rank; on rank 0 from its rendering thread). Throws on failure.
     std::function<FramePart(const WorkItem&)> renderPart;
     /// Rank 0: job's frame is whole (writes it). Throws on failure.
     std::function<void(uint32_t job, Image&& image, const FrameSummary& summary)> frameDone;
     /// Rank 0: job failed on `rank` with `message`; called once per job, the job's other parts dropped.
+    /// Rank 0 calls frameDone and frameFailed from one thread of their own, in the order frames end,
+    /// so that writing an image never keeps the other ranks waiting for work.
     std::function<void(uint32_t job, const std::string& message, int rank)> frameFailed;
 };
 

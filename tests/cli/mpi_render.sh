@@ -6,8 +6,9 @@ set -eu
 mpirun="$1" wideray="$2" image_equal="$3" scenes="$4"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-# As root, OpenMPI needs --allow-run-as-root; --oversubscribe lets 3 ranks run on fewer cores.
-ranks() { local n="$1"; shift; "$mpirun" --allow-run-as-root --oversubscribe -np "$n" "$wideray" render "$@"; }
+# As root, OpenMPI needs --allow-run-as-root; --oversubscribe lets 3 ranks run on fewer cores;
+# --bind-to none lets each rank's threads use every core.
+ranks() { local n="$1"; shift; "$mpirun" --allow-run-as-root --oversubscribe --bind-to none -np "$n" "$wideray" render "$@"; }
 same() {
   "$image_equal" "$1" "$2" || { echo "FAIL: $3: $2 differs from the single-process $1"; exit 1; }
   echo "ok   $3"
