@@ -3,6 +3,7 @@
 #include <sched.h>
 
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <set>
 #include <thread>
@@ -12,6 +13,7 @@
 #include "cli/render_jobs.h"
 #include "core/camera_path.h"
 #include "core/error.h"
+#include "io/mesh_framing.h"
 #include "mpi/distributed_render.h"
 #include "render/frame_parts.h"
 
@@ -31,7 +33,7 @@ std::vector<FrameJob> frameJobs(const RenderArgs& args) {
         const std::string& file = args.scenes[s];
         try {
             const std::optional<FrameRange> range =
-                std::filesystem::path(file).extension() == ".json" ? loadSceneFrames(file) : std::nullopt;
+                isSceneFile(file) ? loadSceneFrames(file) : std::nullopt;
             for (std::optional<int> frame : framesToRender(args, file, range)) jobs.push_back({s, frame, {}});
         } catch (const std::exception& e) {
             jobs.push_back({s, std::nullopt, e.what()});
@@ -48,10 +50,17 @@ public:
     FramePart render(const WorkItem& item) {
         const FrameJob& job = jobs_.at(item.job);
         if (!job.error.empty()) throw std::runtime_error(job.error);
+        if (const auto failed = loadErrors_.find(job.scene); failed != loadErrors_.end())
+            throw std::runtime_error(failed->second);  // the scene's other frames: no second attempt
         double buildSeconds = 0;
         if (!loaded_ || loadedScene_ != job.scene) {
             loaded_.reset();
-            loaded_ = loadForRender(args_, args_.scenes[job.scene]);
+            try {
+                loaded_ = loadForRender(args_, args_.scenes[job.scene]);
+            } catch (const std::exception& e) {
+                loadErrors_.emplace(job.scene, e.what());
+                throw;
+            }
             loadedScene_ = job.scene;
             buildSeconds = loaded_->buildSeconds;
         }
@@ -72,6 +81,7 @@ private:
     const std::vector<FrameJob>& jobs_;
     std::optional<LoadedScene> loaded_;
     size_t loadedScene_ = 0;
+    std::map<size_t, std::string> loadErrors_;  ///< by scene
 };
 
 /// mpirun binds each rank to one core when it starts at most 2 ranks, which leaves a rank's oneTBB
@@ -97,7 +107,7 @@ int renderWithMpi(const RenderArgs& args) {
     if (session.rank() == 0) warnIfBoundToOneCore();
     const std::vector<FrameJob> jobs = frameJobs(args);
     PartRenderer renderer(args, jobs);
-    std::set<size_t> failedScenes;
+    std::map<size_t, std::set<std::string>> failures;  ///< messages by scene, each printed once
     const Aov aov = renderOptions(args, "").aov;
 
     DistributedBatch batch;
@@ -115,14 +125,15 @@ int renderWithMpi(const RenderArgs& args) {
         printFrameLine(line, aov);
     };
     batch.frameFailed = [&](uint32_t j, const std::string& message, int rank) {
-        failedScenes.insert(jobs[j].scene);
+        // The frames of a scene that does not load all fail alike: one line for them.
+        if (!failures[jobs[j].scene].insert(message).second) return;
         fmt::print(stderr, "error: {} (rank {})\n", message, rank);
         std::fflush(stderr);
     };
     renderDistributed(session, batch);
 
-    if (session.rank() != 0 || failedScenes.empty()) return 0;
-    fmt::print(stderr, "{} of {} scenes failed\n", failedScenes.size(), args.scenes.size());
+    if (session.rank() != 0 || failures.empty()) return 0;
+    fmt::print(stderr, "{} of {} scenes failed\n", failures.size(), args.scenes.size());
     return 1;
 }
 

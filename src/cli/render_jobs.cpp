@@ -62,6 +62,9 @@ std::vector<std::optional<int>> framesToRender(const RenderArgs& args, const std
         throw InputError(file, "", "--frames " + args.frames + " asks for frames, but the scene has no \"animation\"");
     if (!range) return {std::nullopt};
     const FrameRange chosen = args.frames.empty() ? *range : parseFrames(args.frames);
+    if (chosen.first < range->first || chosen.last > range->last)
+        throw InputError(file, "", fmt::format("--frames {} asks for frames outside the animation's {}-{}", args.frames,
+                                               range->first, range->last));
     std::vector<std::optional<int>> frames;
     for (int f = chosen.first; f <= chosen.last; ++f) frames.push_back(f);
     return frames;

@@ -53,7 +53,8 @@ struct LoadedScene {
 LoadedScene loadForRender(const RenderArgs& args, const std::string& file);
 
 /// The frames to render of a scene whose animation covers `range` (none: a still scene, one frame
-/// without a number), --frames choosing among them. Throws InputError for --frames on a still scene.
+/// without a number), --frames choosing among them. Throws InputError for --frames on a still scene or
+/// outside the animation's range.
 std::vector<std::optional<int>> framesToRender(const RenderArgs& args, const std::string& file,
                                                const std::optional<FrameRange>& range);
 

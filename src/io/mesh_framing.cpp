@@ -37,10 +37,14 @@ Scene sceneFromMesh(const std::filesystem::path& meshFile, int width, int height
     return scene;
 }
 
-Scene loadSceneOrMesh(const std::filesystem::path& file, int meshWidth, int meshHeight) {
+bool isSceneFile(const std::filesystem::path& file) {
     std::string ext = file.extension().string();
     for (char& ch : ext) ch = char(std::tolower(ch));
-    if (ext == ".json") return loadScene(file);
+    return ext == ".json";
+}
+
+Scene loadSceneOrMesh(const std::filesystem::path& file, int meshWidth, int meshHeight) {
+    if (isSceneFile(file)) return loadScene(file);
     return sceneFromMesh(file, meshWidth, meshHeight);
 }
 

@@ -112,14 +112,18 @@ private:
             queue_.pop_front();
             lock.unlock();
             changed_.notify_all();
-            if (!entry.image) {
-                batch_.frameFailed(entry.job, entry.message, entry.rank);
-                continue;
+            if (entry.image) {
+                try {
+                    batch_.frameDone(entry.job, std::move(*entry.image), entry.summary);
+                    continue;
+                } catch (const std::exception& e) {
+                    entry.message = e.what();
+                }
             }
             try {
-                batch_.frameDone(entry.job, std::move(*entry.image), entry.summary);
+                batch_.frameFailed(entry.job, entry.message, entry.rank);
             } catch (const std::exception& e) {
-                batch_.frameFailed(entry.job, e.what(), 0);
+                std::fprintf(stderr, "error: %s\n", e.what());  // reporting failed too; the frame stays failed
             }
         }
     }
@@ -142,9 +146,10 @@ public:
                                                 ranks == 1 ? "" : "s"),
                     size_t(batch.jobs) * parts) {}
 
-    /// The next item, skipping frames that failed; none once all are handed out.
+    /// The next item, skipping frames that failed; none once all are handed out, or once stopped.
     std::optional<WorkItem> next() {
         std::lock_guard lock(mutex_);
+        if (stopped_) return std::nullopt;
         while (job_ < batch_.jobs && jobs_[job_].failed) {
             ++job_;
             part_ = 0;
@@ -186,6 +191,12 @@ public:
         }
     }
 
+    /// No more items, for anyone: the batch is being abandoned.
+    void stop() {
+        std::lock_guard lock(mutex_);
+        stopped_ = true;
+    }
+
     void failed(int rank, const WorkItem& item, const std::string& message) {
         std::lock_guard lock(mutex_);
         if (item.job >= batch_.jobs) throw std::runtime_error("rank " + std::to_string(rank) + " failed on no job");
@@ -216,6 +227,7 @@ private:
     std::vector<Job> jobs_;
     FrameOutbox& outbox_;
     uint32_t job_ = 0, part_ = 0;
+    bool stopped_ = false;
     ProgressReporter progress_;  ///< items done, on stderr
 };
 
@@ -238,17 +250,22 @@ void serveAndRender(const MpiSession& session, const DistributedBatch& batch) {
         std::thread& thread;
         ~Join() { thread.join(); }
     } join{own};
-    for (int active = session.size() - 1; active > 0;) {
-        const int source = waitFor(MPI_ANY_SOURCE, kTagToRoot).MPI_SOURCE;
-        RankMessage message = decodeMessage(receiveBytes(source, kTagToRoot));
-        if (message.kind == RankMessage::Kind::Part)
-            dispatcher.finished(source, std::move(message.part));
-        else if (message.kind == RankMessage::Kind::Failure)
-            dispatcher.failed(source, message.item, message.error);
-        const std::optional<WorkItem> item = dispatcher.next();
-        const ItemMessage reply = item ? ItemMessage{item->job, item->part, item->parts} : ItemMessage{};
-        check(MPI_Send(&reply, sizeof(reply), MPI_BYTE, source, kTagItem, MPI_COMM_WORLD), "MPI_Send");
-        if (!item) --active;
+    try {
+        for (int active = session.size() - 1; active > 0;) {
+            const int source = waitFor(MPI_ANY_SOURCE, kTagToRoot).MPI_SOURCE;
+            RankMessage message = decodeMessage(receiveBytes(source, kTagToRoot));
+            if (message.kind == RankMessage::Kind::Part)
+                dispatcher.finished(source, std::move(message.part));
+            else if (message.kind == RankMessage::Kind::Failure)
+                dispatcher.failed(source, message.item, message.error);
+            const std::optional<WorkItem> item = dispatcher.next();
+            const ItemMessage reply = item ? ItemMessage{item->job, item->part, item->parts} : ItemMessage{};
+            check(MPI_Send(&reply, sizeof(reply), MPI_BYTE, source, kTagItem, MPI_COMM_WORLD), "MPI_Send");
+            if (!item) --active;
+        }
+    } catch (...) {
+        dispatcher.stop();  // rank 0's own thread ends with its item, and the abort follows
+        throw;
     }
 }
 

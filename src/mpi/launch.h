@@ -1,6 +1,7 @@
 #pragma once
 // Whether this process is one of the ranks that mpirun (or mpiexec) started, from the environment the
 // launcher gives its processes, so that a plain `wideray render` never initializes MPI.
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 

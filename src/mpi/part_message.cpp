@@ -102,7 +102,6 @@ std::vector<std::byte> encodeMessage(const RankMessage& message) {
         w.putString(p.accelName);
         w.putString(p.engine);
         w.put(p.buildSeconds);
-        w.put(p.renderSeconds);
     }
     return std::move(w.bytes);
 }
@@ -134,7 +133,6 @@ RankMessage decodeMessage(std::span<const std::byte> bytes) {
         p.accelName = r.getString();
         p.engine = r.getString();
         p.buildSeconds = r.get<double>();
-        p.renderSeconds = r.get<double>();
         break;
     }
     default: throw std::runtime_error("unknown message kind");

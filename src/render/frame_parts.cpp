@@ -24,7 +24,7 @@ FramePart renderPart(const Scene& scene, const Tracer& tracer, const RenderOptio
     part.tileSize = resolved.tileSize;
     part.samplesPerPixel = resolved.samplesPerPixel;
     part.aov = resolved.aov;
-    part.renderSeconds = renderTiles(scene, tracer, resolved, order, tiles, film);
+    renderTiles(scene, tracer, resolved, order, tiles, film);
     part.film = film.extract(tiles);
     return part;
 }
@@ -37,8 +37,9 @@ bool FrameAssembler::add(FramePart&& part) {
         order_ = std::make_unique<TileOrder>(part.width, part.height, part.tileSize);
         film_ = std::make_unique<Film>(part.width, part.height, part.aov, part.samplesPerPixel);
         arrived_.assign(part.item.parts, false);
-        first_ = part;
-        first_.film = {};
+        FilmTiles film = std::move(part.film);
+        first_ = part;  // the description alone
+        part.film = std::move(film);
     }
     const WorkItem& item = part.item;
     if (item.job != first_.item.job || item.parts != first_.item.parts || item.part >= item.parts ||

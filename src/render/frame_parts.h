@@ -36,11 +36,10 @@ struct FramePart {
     uint64_t triangles = 0;
     std::string accelName, engine;  ///< "BVH8", and the tracer's description
     double buildSeconds = 0;        ///< building the structure, where this part's rank built it for this part
-    double renderSeconds = 0;
 };
 
 /// Renders part `item` of the frame `scene` describes (its camera), through `tracer`; `options`
-/// as for render(). The report fields other than renderSeconds are left to the caller.
+/// as for render(). The report fields (triangles, names, build time) are left to the caller.
 FramePart renderPart(const Scene& scene, const Tracer& tracer, const RenderOptions& options, const WorkItem& item);
 
 /// Joins the parts of one frame as they arrive, in any order.
