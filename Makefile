@@ -43,7 +43,7 @@ sanitize: deps
 fuzz: deps
 	@scripts/install-deps.sh clang-14 libclang-rt-14-dev
 	CC=clang-14 CXX=clang++-14 cmake -S . -B $(FUZZ_BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWIDERAY_FUZZ=ON -DWIDERAY_TESTS=OFF -DWIDERAY_BENCHMARKS=OFF
-	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target scene_json_fuzzer trace_scene_fuzzer
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzzers
 	ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp UBSAN_OPTIONS=print_stacktrace=1 scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 ## Our kernels (on our fast and high quality builds) against Embree's (on its medium and high quality

@@ -405,6 +405,38 @@ TEST_F(MeshIoTest, GlbLoadsLikeGltf) {
     EXPECT_TRUE(mesh.faceMaterial.empty()); // the file has no materials, although the primitive names one
 }
 
+void expectSameMesh(const TriangleMesh& a, const TriangleMesh& b) {
+    EXPECT_EQ(a.positions, b.positions);
+    EXPECT_EQ(a.triangles, b.triangles);
+    EXPECT_EQ(a.faceMaterial, b.faceMaterial);
+    ASSERT_EQ(a.materials.size(), b.materials.size());
+    for (size_t m = 0; m < a.materials.size(); ++m) {
+        EXPECT_EQ(a.materials[m].name, b.materials[m].name);
+        EXPECT_EQ(a.materials[m].diffuse, b.materials[m].diffuse);
+    }
+}
+
+// The in-memory entry points (the fuzzing harnesses', fuzz/) read what the file loaders read.
+TEST_F(MeshIoTest, MeshesFromMemoryEqualMeshesFromFiles) {
+    const std::string mtl = "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 0.5\n";
+    const std::string obj = "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nf 1 2 5\n"
+                            "usemtl blue\nf 1 2 3 4\n";
+    write("quad.mtl", mtl);
+    expectSameMesh(parseObj(obj, mtl, "quad.obj"), loadMesh(write("quad.obj", obj)));
+    for (const char* format : plyFormats) {
+        const std::string ply = plyFile(format, cubeElements, cubeItems());
+        expectSameMesh(parsePly(ply, "cube.ply"), loadMesh(write("cube.ply", ply)));
+    }
+    const std::string gltf = triangleGltf(R"(, "materials": [{"name": "paint",
+        "pbrMetallicRoughness": {"baseColorFactor": [0.25, 0.5, 0.75, 1]}}])");
+    expectSameMesh(parseGltf(gltf, dir_ / "triangle.gltf"), loadMesh(write("triangle.gltf", gltf)));
+    const std::string glb = glbFile(triangleGltf("", false), triangleBuffer());
+    expectSameMesh(parseGltf(glb, dir_ / "triangle.glb"), loadMesh(write("triangle.glb", glb)));
+    expectInputError([] { parsePly("ply\nformat ascii 1.0\nelement vertex 3\nend_header\n1 2", "m.ply"); }, {"m.ply"});
+    expectInputError([] { parseGltf("{", "m.gltf"); }, {"m.gltf"});
+    expectInputError([] { parseObj("f 1 2 3\n", "", "m.obj"); }, {"m.obj"});
+}
+
 TEST_F(MeshIoTest, GltfWithMissingTextureLoadsWithAWarning) {
     const auto path = write("textured.gltf", triangleGltf(R"(,
         "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],

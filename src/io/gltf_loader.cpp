@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <optional>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -297,20 +298,16 @@ std::vector<int> rootNodes(const tinygltf::Model& model) {
 
 } // namespace
 
-TriangleMesh loadGltf(const std::filesystem::path& path) {
-    const std::string file = path.string();
-    if (!std::ifstream(path)) throw InputError(file, "", "cannot open file");
+namespace {
 
+/// `load` fills the model through one of tinygltf's entry points; the rest is the same for all.
+template <class Load>
+TriangleMesh meshFromGltf(const std::string& file, Load load) {
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keepImageUndecoded, nullptr);
     tinygltf::Model model;
     std::string error, warning;
-    std::string extension = path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    const bool binary = extension == ".glb";
-    const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, file)
-                               : loader.LoadASCIIFromFile(&model, &error, &warning, file);
+    const bool loaded = load(loader, model, error, warning);
     if (!warning.empty()) std::cerr << "warning: " << file << ": " << trimmed(warning) << "\n";
     if (!loaded || !error.empty()) throw InputError(file, "", trimmed(error.empty() ? "cannot parse glTF" : error));
 
@@ -319,6 +316,35 @@ TriangleMesh loadGltf(const std::filesystem::path& path) {
     TriangleMesh mesh = flattener.take();
     validateMesh(mesh, file);
     return mesh;
+}
+
+} // namespace
+
+TriangleMesh loadGltf(const std::filesystem::path& path) {
+    const std::string file = path.string();
+    if (!std::ifstream(path)) throw InputError(file, "", "cannot open file");
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    const bool binary = extension == ".glb";
+    return meshFromGltf(file, [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& error,
+                                  std::string& warning) {
+        return binary ? loader.LoadBinaryFromFile(&model, &error, &warning, file)
+                      : loader.LoadASCIIFromFile(&model, &error, &warning, file);
+    });
+}
+
+TriangleMesh parseGltf(const std::string& data, const std::string& file) {
+    if (data.size() > std::numeric_limits<unsigned int>::max()) throw InputError(file, "", "larger than 4 GiB");
+    const std::string folder = std::filesystem::path(file).parent_path().string();
+    const bool binary = data.starts_with("glTF");
+    return meshFromGltf(file, [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& error,
+                                  std::string& warning) {
+        const auto length = static_cast<unsigned int>(data.size());
+        return binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                                    reinterpret_cast<const unsigned char*>(data.data()), length, folder)
+                      : loader.LoadASCIIFromString(&model, &error, &warning, data.data(), length, folder);
+    });
 }
 
 } // namespace wideray

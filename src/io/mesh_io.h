@@ -16,6 +16,13 @@ TriangleMesh loadObj(const std::filesystem::path& path);
 TriangleMesh loadPly(const std::filesystem::path& path);
 TriangleMesh loadGltf(const std::filesystem::path& path);
 
+/// The same from memory (the fuzzing harnesses' entry points): `file` names the data in messages.
+/// OBJ: every mtllib reads `mtlText`. glTF: binary (GLB) when the data starts with its magic "glTF";
+/// external buffers and images are looked up next to `file`.
+TriangleMesh parseObj(const std::string& objText, const std::string& mtlText, const std::string& file);
+TriangleMesh parsePly(const std::string& data, const std::string& file);
+TriangleMesh parseGltf(const std::string& data, const std::string& file);
+
 /// Removes zero-area triangles (and counts them); checks indices and coordinates. Shared by every loader.
 void validateMesh(TriangleMesh& mesh, const std::string& file);
 

@@ -141,14 +141,7 @@ private:
     size_t objMaterialCount_;
 };
 
-} // namespace
-
-TriangleMesh loadObj(const std::filesystem::path& path) {
-    const std::string file = path.string();
-    if (!std::ifstream(path)) throw InputError(file, "", "cannot open file");
-
-    tinyobj::ObjReader reader;
-    const bool parsed = reader.ParseFromFile(file, untriangulatedConfig());
+TriangleMesh meshFromReader(const tinyobj::ObjReader& reader, bool parsed, const std::string& file) {
     printWarnings(file, reader.Warning());
     if (!parsed || !reader.Error().empty()) throw InputError(file, "", stripNewline(reader.Error()));
 
@@ -184,6 +177,22 @@ TriangleMesh loadObj(const std::filesystem::path& path) {
 
     validateMesh(mesh, file);
     return mesh;
+}
+
+} // namespace
+
+TriangleMesh loadObj(const std::filesystem::path& path) {
+    const std::string file = path.string();
+    if (!std::ifstream(path)) throw InputError(file, "", "cannot open file");
+    tinyobj::ObjReader reader;
+    const bool parsed = reader.ParseFromFile(file, untriangulatedConfig());
+    return meshFromReader(reader, parsed, file);
+}
+
+TriangleMesh parseObj(const std::string& objText, const std::string& mtlText, const std::string& file) {
+    tinyobj::ObjReader reader;
+    const bool parsed = reader.ParseFromString(objText, mtlText, untriangulatedConfig());
+    return meshFromReader(reader, parsed, file);
 }
 
 } // namespace wideray

@@ -409,9 +409,9 @@ std::string readWholeFile(const std::filesystem::path& path) {
 
 } // namespace
 
-TriangleMesh loadPly(const std::filesystem::path& path) {
-    const std::string file = path.string();
-    const std::string data = readWholeFile(path);
+TriangleMesh loadPly(const std::filesystem::path& path) { return parsePly(readWholeFile(path), path.string()); }
+
+TriangleMesh parsePly(const std::string& data, const std::string& file) {
     const PlyHeader header = parseHeader(data, file);
     const size_t bodyBytes = data.size() - header.bodyOffset;
 
