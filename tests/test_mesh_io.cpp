@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
@@ -213,6 +214,39 @@ TEST_F(MeshIoTest, NanCoordinateIsAnError) {
 }
 
 // ---- validateMesh ------------------------------------------------------------------------------
+
+TEST_F(MeshIoTest, PlyElementWithoutPropertiesIsSkippedAtOnce) {
+    // Found by ply_fuzzer: such an element with a count of 2^62 was counted through item by item.
+    for (const char* format : plyFormats) {
+        const std::string ply = plyFile(format, "element marker 4611686018427387904\n" + cubeElements, cubeItems());
+        EXPECT_EQ(parsePly(ply, "marker.ply").triangleCount(), 12u) << format;
+    }
+}
+
+// Inputs the fuzzers found (fuzz/, docs/robustness.md), kept as they were found: each ends in a mesh or
+// an InputError, at once.
+TEST(FuzzRegressions, EndInAMeshOrAnInputError) {
+    const std::filesystem::path folder = std::filesystem::path(WIDERAY_SOURCE_DIR) / "tests/data/fuzz";
+    size_t inputs = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+        std::ifstream in(entry.path(), std::ios::binary);
+        const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::string ext = entry.path().extension().string(), name = entry.path().string();
+        try {
+            if (ext == ".ply") parsePly(data, name);
+            else if (ext == ".obj") {  // as obj_fuzzer reads it: OBJ text, NUL, MTL text
+                const size_t split = data.find('\0');
+                parseObj(data.substr(0, split), split == std::string::npos ? "" : data.substr(split + 1), name);
+            }
+            else if (ext == ".gltf" || ext == ".glb") parseGltf(data, name);
+            else ADD_FAILURE() << "no reader for " << name;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+        }
+        ++inputs;
+    }
+    EXPECT_GT(inputs, 0u);
+}
 
 TEST(ValidateMesh, DropsZeroAreaTrianglesKeepingMaterialsInStep) {
     TriangleMesh mesh;

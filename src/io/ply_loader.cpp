@@ -278,6 +278,8 @@ void skipProperty(Reader& in, const PlyProperty& property) {
 
 template <class Reader>
 void skipElement(Reader& in, const PlyElement& element, const std::string& file) {
+    // Items without properties hold no data: a count of 2^63 of them must not be counted through.
+    if (element.properties.empty()) return;
     for (size_t i = 0; i < element.count; ++i) {
         for (const PlyProperty& property : element.properties) skipProperty(in, property);
         if (in.truncated()) throwTruncated(file, in, element, i);
