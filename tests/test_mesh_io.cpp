@@ -188,6 +188,10 @@ TEST_F(MeshIoTest, PlyHeaderErrors) {
     expectInputError([&] { loadPly(badFormat); }, {"line 2", "unknown format 'binary_middle_endian'"});
     const auto badType = write("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty half x\nend_header\n");
     expectInputError([&] { loadPly(badType); }, {"line 4", "unsupported property type 'half'"});
+    // Found by ply_fuzzer: a float count of 4.7e30 items reached an out-of-range float-to-integer cast.
+    const auto floatCount = write("count.ply", "ply\nformat ascii 1.0\nelement edge 1\nproperty list float int e\n"
+                                               "end_header\n4.7e30 1 2\n");
+    expectInputError([&] { loadPly(floatCount); }, {"line 4", "a list's count type must be an integer type"});
 }
 
 TEST_F(MeshIoTest, PlyFaceWithTwoVerticesIsAnError) {

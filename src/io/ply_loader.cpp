@@ -131,6 +131,7 @@ PlyHeader parseHeader(std::string_view data, const std::string& file) {
             PlyProperty property;
             if (words.size() == 5 && words[1] == "list") {
                 property = {std::string(words[4]), typeNamed(words[3]), typeNamed(words[2])};
+                if (!isInteger(*property.listCountType)) fail("a list's count type must be an integer type");
             } else if (words.size() == 3) {
                 property = {std::string(words[2]), typeNamed(words[1]), std::nullopt};
             } else {
