@@ -475,6 +475,20 @@ TEST_F(MeshIoTest, MeshesFromMemoryEqualMeshesFromFiles) {
     expectInputError([] { parseObj("f 1 2 3\n", "", "m.obj"); }, {"m.obj"});
 }
 
+TEST_F(MeshIoTest, GltfAllocatesNoMoreThanItsDataJustifies) {
+    // Found by gltf_fuzzer: an accessor without bufferView (all zeros) of count 215,122,229 took 2.6 GB.
+    const std::string zeros = R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "accessors": [{"componentType": 5126, "count": 215122229, "type": "VEC3"}]})";
+    expectInputError([&] { parseGltf(zeros, "zeros.gltf"); }, {"zeros.gltf:accessors[0]", "count 215122229", "justify"});
+    // A node under two parents would repeat its subtree once per path: 2^30 copies from 30 such nodes.
+    std::string nodes;
+    for (int i = 0; i < 30; ++i) nodes += R"({"children": [)" + std::to_string(i + 1) + "," + std::to_string(i + 1) + "]},";
+    const std::string dag = R"({"asset": {"version": "2.0"}, "nodes": [)" + nodes +
+                            R"({}]})";
+    expectInputError([&] { parseGltf(dag, "dag.gltf"); }, {"dag.gltf:nodes[30]", "reached twice"});
+}
+
 TEST_F(MeshIoTest, GltfWithMissingTextureLoadsWithAWarning) {
     const auto path = write("textured.gltf", triangleGltf(R"(,
         "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],

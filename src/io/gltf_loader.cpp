@@ -48,7 +48,11 @@ glm::dmat4 localTransform(const tinygltf::Node& node) {
 /// unsigned indices, checking every offset against its buffer.
 class AccessorReader {
 public:
-    AccessorReader(const tinygltf::Model& model, const std::string& file) : model_(model), file_(file) {}
+    /// `inputBytes`: the size of the file read, which bounds the accessors that hold no data.
+    AccessorReader(const tinygltf::Model& model, const std::string& file, size_t inputBytes)
+        : model_(model), file_(file), dataBytes_(inputBytes) {
+        for (const tinygltf::Buffer& buffer : model.buffers) dataBytes_ += buffer.data.size();
+    }
 
     template <int N>
     std::vector<glm::vec<N, float>> readFloats(int accessorIndex) {
@@ -91,8 +95,13 @@ private:
         if (accessorIndex < 0 || size_t(accessorIndex) >= model_.accessors.size())
             throw InputError(file_, "accessors[" + std::to_string(accessorIndex) + "]", "no such accessor");
         const tinygltf::Accessor& accessor = model_.accessors[size_t(accessorIndex)];
-        if (accessor.sparse.isSparse)
-            throw InputError(file_, "accessors[" + std::to_string(accessorIndex) + "]", "sparse accessors are not supported");
+        const std::string where = "accessors[" + std::to_string(accessorIndex) + "]";
+        if (accessor.sparse.isSparse) throw InputError(file_, where, "sparse accessors are not supported");
+        // Without a bufferView an accessor is all zeros: its count costs memory that no data pays for.
+        if (accessor.bufferView < 0 && accessor.count > dataBytes_)
+            throw InputError(file_, where, "count " + std::to_string(accessor.count) + " of an accessor without "
+                             "bufferView (all zeros) is more than the file's " + std::to_string(dataBytes_) +
+                             " bytes of data can justify");
         return accessor;
     }
 
@@ -149,13 +158,14 @@ private:
 
     const tinygltf::Model& model_;
     const std::string& file_;
+    size_t dataBytes_;
 };
 
 /// Appends the triangle primitives of the scene's nodes to one mesh.
 class SceneFlattener {
 public:
-    SceneFlattener(const tinygltf::Model& model, const std::string& file)
-        : model_(model), file_(file), accessors_(model, file) {
+    SceneFlattener(const tinygltf::Model& model, const std::string& file, size_t inputBytes)
+        : model_(model), file_(file), accessors_(model, file, inputBytes) {
         for (size_t m = 0; m < model.materials.size(); ++m) {
             const tinygltf::Material& material = model.materials[m];
             const std::vector<double>& color = material.pbrMetallicRoughness.baseColorFactor;
@@ -170,6 +180,12 @@ public:
         if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size()) throw InputError(file_, where, "no such node");
         if (onPath_.size() < model_.nodes.size()) onPath_.resize(model_.nodes.size(), false);
         if (onPath_[size_t(nodeIndex)]) throw InputError(file_, where, "node is its own ancestor");
+        // glTF's nodes form disjoint trees; a node reached twice could repeat a subtree exponentially.
+        if (visited_.size() < model_.nodes.size()) visited_.resize(model_.nodes.size(), false);
+        if (visited_[size_t(nodeIndex)])
+            throw InputError(file_, where, "node is reached twice (a node has one parent at most, and a scene "
+                                           "lists each root node once)");
+        visited_[size_t(nodeIndex)] = true;
         onPath_[size_t(nodeIndex)] = true;
 
         const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
@@ -271,7 +287,7 @@ private:
     const std::string& file_;
     AccessorReader accessors_;
     TriangleMesh mesh_;
-    std::vector<bool> onPath_;
+    std::vector<bool> onPath_, visited_;
     std::optional<uint32_t> defaultMaterial_;
     bool allHaveNormals_ = true;
     bool allHaveUvs_ = true;
@@ -302,7 +318,7 @@ namespace {
 
 /// `load` fills the model through one of tinygltf's entry points; the rest is the same for all.
 template <class Load>
-TriangleMesh meshFromGltf(const std::string& file, Load load) {
+TriangleMesh meshFromGltf(const std::string& file, size_t inputBytes, Load load) {
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(keepImageUndecoded, nullptr);
     tinygltf::Model model;
@@ -311,7 +327,7 @@ TriangleMesh meshFromGltf(const std::string& file, Load load) {
     if (!warning.empty()) std::cerr << "warning: " << file << ": " << trimmed(warning) << "\n";
     if (!loaded || !error.empty()) throw InputError(file, "", trimmed(error.empty() ? "cannot parse glTF" : error));
 
-    SceneFlattener flattener(model, file);
+    SceneFlattener flattener(model, file, inputBytes);
     for (int node : rootNodes(model)) flattener.addNode(node, glm::dmat4(1.0));
     TriangleMesh mesh = flattener.take();
     validateMesh(mesh, file);
@@ -327,7 +343,9 @@ TriangleMesh loadGltf(const std::filesystem::path& path) {
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
     const bool binary = extension == ".glb";
-    return meshFromGltf(file, [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& error,
+    std::error_code ec;
+    const size_t bytes = std::filesystem::file_size(path, ec);
+    return meshFromGltf(file, ec ? 0 : bytes, [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& error,
                                   std::string& warning) {
         return binary ? loader.LoadBinaryFromFile(&model, &error, &warning, file)
                       : loader.LoadASCIIFromFile(&model, &error, &warning, file);
@@ -338,7 +356,7 @@ TriangleMesh parseGltf(const std::string& data, const std::string& file) {
     if (data.size() > std::numeric_limits<unsigned int>::max()) throw InputError(file, "", "larger than 4 GiB");
     const std::string folder = std::filesystem::path(file).parent_path().string();
     const bool binary = data.starts_with("glTF");
-    return meshFromGltf(file, [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& error,
+    return meshFromGltf(file, data.size(), [&](tinygltf::TinyGLTF& loader, tinygltf::Model& model, std::string& error,
                                   std::string& warning) {
         const auto length = static_cast<unsigned int>(data.size());
         return binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
