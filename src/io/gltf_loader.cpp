@@ -323,7 +323,12 @@ TriangleMesh meshFromGltf(const std::string& file, size_t inputBytes, Load load)
     loader.SetImageLoader(keepImageUndecoded, nullptr);
     tinygltf::Model model;
     std::string error, warning;
-    const bool loaded = load(loader, model, error, warning);
+    bool loaded = false;
+    try {
+        loaded = load(loader, model, error, warning);
+    } catch (const std::exception& e) {  // tinygltf indexes some arrays with at() on broken files
+        throw InputError(file, "", std::string("cannot parse glTF: ") + e.what());
+    }
     if (!warning.empty()) std::cerr << "warning: " << file << ": " << trimmed(warning) << "\n";
     if (!loaded || !error.empty()) throw InputError(file, "", trimmed(error.empty() ? "cannot parse glTF" : error));
 
