@@ -97,11 +97,11 @@ private:
         const tinygltf::Accessor& accessor = model_.accessors[size_t(accessorIndex)];
         const std::string where = "accessors[" + std::to_string(accessorIndex) + "]";
         if (accessor.sparse.isSparse) throw InputError(file_, where, "sparse accessors are not supported");
-        // Without a bufferView an accessor is all zeros: its count costs memory that no data pays for.
-        if (accessor.bufferView < 0 && accessor.count > dataBytes_)
-            throw InputError(file_, where, "count " + std::to_string(accessor.count) + " of an accessor without "
-                             "bufferView (all zeros) is more than the file's " + std::to_string(dataBytes_) +
-                             " bytes of data can justify");
+        // Checked before the elements are allocated: an element takes a byte of data at least (and an
+        // accessor without bufferView, all zeros, takes none).
+        if (accessor.count > dataBytes_)
+            throw InputError(file_, where, "count " + std::to_string(accessor.count) + " is more than the file's " +
+                             std::to_string(dataBytes_) + " bytes of data can justify");
         return accessor;
     }
 
