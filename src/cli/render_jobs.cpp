@@ -104,8 +104,7 @@ std::filesystem::path outputPath(const RenderArgs& args, const std::filesystem::
 
 void writeFrame(Image& image, const std::filesystem::path& path, Aov aov) {
     // 8-bit formats cannot hold depths, so those are scaled to [0, 1] by the largest depth.
-    const std::string ext = path.extension().string();
-    if (aov == Aov::Depth && ext != ".exr" && ext != ".hdr" && ext != ".pfm") {
+    if (aov == Aov::Depth && !isFloatFormat(path)) {
         float maxDepth = 0.0f;
         for (float d : image.pixels) maxDepth = std::max(maxDepth, d);
         if (maxDepth > 0.0f)

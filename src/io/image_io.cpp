@@ -17,9 +17,13 @@ float linearToSrgb(float v) {
 
 float srgbToLinear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
 
-bool isFloatFormat(const std::string& ext) { return ext == ".exr" || ext == ".hdr" || ext == ".pfm"; }
-
 } // namespace
+
+bool isFloatFormat(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = char(std::tolower(c));
+    return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
+}
 
 void writeImage(const Image& image, const std::filesystem::path& path, bool srgb) {
     const std::string file = path.string();
@@ -37,7 +41,7 @@ void writeImage(const Image& image, const std::filesystem::path& path, bool srgb
 
     auto out = OIIO::ImageOutput::create(temp.string());
     if (!out) throw InputError(file, "", "cannot write this image format: " + OIIO::geterror());
-    bool floatOut = isFloatFormat(ext);
+    bool floatOut = isFloatFormat(path);
     OIIO::ImageSpec spec(image.width, image.height, image.channels, floatOut ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
     std::vector<float> data = image.pixels;
     if (!floatOut && srgb && image.channels >= 3)

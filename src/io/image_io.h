@@ -11,6 +11,9 @@ namespace wideray {
 /// temporary file in the same folder, renamed into place only once complete. Throws InputError.
 void writeImage(const Image& image, const std::filesystem::path& path, bool srgb);
 
+/// Whether the format `path`'s extension names stores floats (EXR, HDR, PFM) rather than 8-bit values.
+bool isFloatFormat(const std::filesystem::path& path);
+
 /// Reads an image as linear floats (sRGB decoded for 8-bit files when `srgb`). Throws InputError.
 Image readImage(const std::filesystem::path& path, bool srgb);
 

@@ -21,7 +21,11 @@ public:
         const auto* p = reinterpret_cast<const std::byte*>(values.data());
         bytes.insert(bytes.end(), p, p + values.size() * sizeof(T));
     }
-    void putString(const std::string& s) { putArray(std::vector<char>(s.begin(), s.end())); }
+    void putString(const std::string& s) {
+        put(uint64_t(s.size()));
+        const auto* p = reinterpret_cast<const std::byte*>(s.data());
+        bytes.insert(bytes.end(), p, p + s.size());
+    }
 
     std::vector<std::byte> bytes;
 };
