@@ -17,7 +17,7 @@ namespace {
 constexpr uint64_t kTriangleBudget = 200000;
 constexpr size_t kPrimitiveBudget = 2000;
 
-bool small(const wideray::Scene& scene) {
+bool small(const wideray::SceneDescription& scene) {
     uint64_t triangles = 0;
     for (const wideray::MeshInstance& i : scene.instances) triangles += scene.meshes[i.mesh].triangles.size();
     size_t blobBalls = 0;
@@ -33,7 +33,7 @@ bool small(const wideray::Scene& scene) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace wideray;
-    Scene scene;
+    SceneDescription scene;
     try {
         scene = parseScene(std::string(reinterpret_cast<const char*>(data), size), "/nonexistent/fuzz.json");
     } catch (const InputError&) {

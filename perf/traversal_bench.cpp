@@ -41,7 +41,7 @@ std::string inputName() {
 const TraversalInputs& inputs() {
     static const TraversalInputs built = [] {
         auto bunny = sharedMeshPath(kBunny);
-        Scene scene = chosenInput() ? loadSceneOrMesh(chosenInput(), kImageSize, kImageSize)
+        SceneDescription scene = chosenInput() ? loadSceneOrMesh(chosenInput(), kImageSize, kImageSize)
                       : bunny       ? sceneFromMesh(*bunny, kImageSize, kImageSize)
                                     : sceneFromMesh(makeTorus(1.0f, 0.3f, 400, 200), kImageSize, kImageSize);
         TraversalInputs in;

@@ -8,8 +8,8 @@
 
 namespace wideray::testing {
 
-inline Scene instancedScene(int side = 5) {
-    Scene scene;
+inline SceneDescription instancedScene(int side = 5) {
+    SceneDescription scene;
     scene.materials = {{"grey"}, {"red"}};
     scene.meshes = {makeTorus(0.8f, 0.3f, 32, 16), makeIcosphere(2), makeQuad()};
     scene.meshes[0].faceMaterial.assign(scene.meshes[0].triangles.size(), 0);

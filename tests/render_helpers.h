@@ -8,7 +8,7 @@
 
 namespace wideray {
 
-inline Image renderWithReference(const Scene& scene, int threads, const RenderOptions& options,
+inline Image renderWithReference(const SceneDescription& scene, int threads, const RenderOptions& options,
                                  RenderStats* statsOut = nullptr) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
     FlushToZeroScope ftz;

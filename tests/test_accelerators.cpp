@@ -92,7 +92,7 @@ void expectMatchesBruteForce(const TriangleMesh& mesh, const std::vector<Ray>& r
 }
 
 /// Camera, shadow and diffuse rays of a scene, and random rays through its meshes.
-void checkScene(const Scene& scene, int size, size_t bruteForceRays) {
+void checkScene(const SceneDescription& scene, int size, size_t bruteForceRays) {
     FlushToZeroScope ftz;
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     auto reference = buildWideBvh(geometry, {})->tracer({"scalar"});
@@ -125,7 +125,7 @@ TEST(Accelerators, MatchReferenceOnDefaultScene) {
 
 TEST(Accelerators, MatchReferenceAndBruteForceOnGeneratedMeshes) {
     for (TriangleMesh mesh : {makeTorus(1.0f, 0.3f, 64, 32), makeIcosphere(3), makeCube()}) {
-        Scene scene = sceneFromMesh(mesh, 64, 64);
+        SceneDescription scene = sceneFromMesh(mesh, 64, 64);
         checkScene(scene, 64, 512);
     }
 }
@@ -142,7 +142,7 @@ TEST_P(SharedMeshAccelerators, MatchReferenceAndBruteForce) {
 #else
     const int size = 64;
 #endif
-    Scene scene = sceneFromMesh(*dir / GetParam(), size, size);
+    SceneDescription scene = sceneFromMesh(*dir / GetParam(), size, size);
     checkScene(scene, size, 64);
 }
 
@@ -277,7 +277,7 @@ TEST(Accelerators, KdTreeCutsOffEmptySpaceIntoEmptyLeaves) {
 }
 
 TEST(Accelerators, EmptySceneMissesEverything) {
-    Scene scene;
+    SceneDescription scene;
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     const Ray ray{0, 0, 0, 0, 0, 1, 0, 1e30f};
     for (const std::string& name : courseAccels()) {
@@ -360,7 +360,7 @@ TEST(Accelerators, RenderTheSameImageAndDrawTheirCost) {
     // structure equals the render through the scalar reference of the same ISA; the cost AOV draws
     // each structure's own work.
     FlushToZeroScope ftz;
-    Scene scene = loadSceneOrMesh(std::filesystem::path(WIDERAY_SOURCE_DIR) / "scenes/default.json");
+    SceneDescription scene = loadSceneOrMesh(std::filesystem::path(WIDERAY_SOURCE_DIR) / "scenes/default.json");
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     RenderOptions options;
     options.width = options.height = 48;

@@ -261,7 +261,7 @@ constexpr const char* kShapesScene = R"({
 })";
 
 TEST(Analytic, EveryBackendAndStructureFindsTheSameHits) {
-    const Scene scene = parseScene(kShapesScene, "shapes.json");
+    const SceneDescription scene = parseScene(kShapesScene, "shapes.json");
     ASSERT_EQ(scene.analytics.size(), 9u);
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     const std::vector<Ray> rays = testing::rayFan({0, 2, 9}, {-5, -3}, {5, 3.5f}, 64, 48);
@@ -291,8 +291,8 @@ TEST(Analytic, EveryBackendAndStructureFindsTheSameHits) {
 }
 
 TEST(Analytic, SceneKeysRoundTripAndBadValuesNameTheirKey) {
-    const Scene first = parseScene(kShapesScene, "shapes.json");
-    const Scene second = parseScene(writeScene(first), "written.json");
+    const SceneDescription first = parseScene(kShapesScene, "shapes.json");
+    const SceneDescription second = parseScene(writeScene(first), "written.json");
     ASSERT_EQ(second.analytics.size(), first.analytics.size());
     for (size_t i = 0; i < first.analytics.size(); ++i) {
         EXPECT_EQ(second.analytics[i].shape, first.analytics[i].shape) << i;

@@ -24,7 +24,7 @@ constexpr float kInf = std::numeric_limits<float>::infinity();
 Ray ray(glm::vec3 o, glm::vec3 d, float tnear = 0.0f) { return {o.x, o.y, o.z, d.x, d.y, d.z, tnear, kInf}; }
 
 /// A scene of the given objects (JSON) with materials "a", "b" and "c".
-Scene csgScene(const std::string& objects) {
+SceneDescription csgScene(const std::string& objects) {
     return parseScene(R"({"lights": [{"type": "point", "position": [0, 5, 0]}],
         "materials": {"a": {"type": "diffuse"}, "b": {"type": "diffuse"}, "c": {"type": "diffuse"}},
         "objects": [)" + objects + "]}", "csg.json");
@@ -44,7 +44,7 @@ struct Surface {
 };
 
 /// Every surface of the scene's first CSG object along the ray, in order.
-std::vector<Surface> surfaces(const Scene& scene, Ray r) {
+std::vector<Surface> surfaces(const SceneDescription& scene, Ray r) {
     const CsgGeometry geometry(scene.csgs, scene.meshes);
     std::vector<Surface> out;
     float t, u, v;
@@ -56,7 +56,7 @@ std::vector<Surface> surfaces(const Scene& scene, Ray r) {
     return out;
 }
 
-void expectSurfaces(const Scene& scene, const Ray& r, const std::vector<Surface>& expected, const std::string& what) {
+void expectSurfaces(const SceneDescription& scene, const Ray& r, const std::vector<Surface>& expected, const std::string& what) {
     const std::vector<Surface> found = surfaces(scene, r);
     ASSERT_EQ(found.size(), expected.size()) << what;
     for (size_t k = 0; k < found.size(); ++k) {
@@ -92,14 +92,14 @@ TEST(Csg, TruthTablesOfTwoSpheres) {
 TEST(Csg, NestedTreesAndInheritedMaterials) {
     // (A u B) - C, C a sphere of material c around the origin; the tree's "material" is a default that
     // the operands' own materials override.
-    const Scene scene = csgScene(R"({"type": "csg", "operation": "difference", "material": "c", "operands": [
+    const SceneDescription scene = csgScene(R"({"type": "csg", "operation": "difference", "material": "c", "operands": [
         )" + twoSpheres("union") + R"(, {"type": "sphere", "center": [0, 0, 0], "radius": 0.25}]})");
     ASSERT_EQ(scene.csgs.size(), 1u);
     ASSERT_EQ(scene.csgs[0].nodes.size(), 5u);
     expectSurfaces(scene, ray({-5, 0, 0}, {1, 0, 0}), {{3.5f, 0, true}, {4.75f, 2, false}, {5.25f, 2, true}, {6.5f, 1, false}},
                    "(A u B) - C");
     // Four levels: ((A n B) u C) xor D, with D a big ellipsoid: inside D but outside the rest.
-    const Scene deep = csgScene(R"({"type": "csg", "operation": "xor", "operands": [
+    const SceneDescription deep = csgScene(R"({"type": "csg", "operation": "xor", "operands": [
         {"type": "csg", "operation": "union", "operands": [)" + twoSpheres("intersection") + R"(,
             {"type": "sphere", "center": [0, 0, 0], "radius": 0.1, "material": "c"}]},
         {"type": "ellipsoid", "radii": [3, 3, 3], "material": "c"}]})");
@@ -112,7 +112,7 @@ TEST(Csg, ClosedMeshesCountEdgesAndVerticesOnce) {
     // The cube intersected with a sphere that contains it is the cube. Rays through the middles of its
     // faces pass along the diagonals that split them into two triangles, rays along its edges and
     // through its corners touch three or six triangles at one point.
-    const Scene scene = csgScene(std::string(R"({"type": "csg", "operation": "intersection", "operands": [)") + kCube +
+    const SceneDescription scene = csgScene(std::string(R"({"type": "csg", "operation": "intersection", "operands": [)") + kCube +
                                  R"(, {"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": "b"}]})");
     ASSERT_EQ(scene.csgs[0].meshes.size(), 1u);
     for (int axis = 0; axis < 3; ++axis) {
@@ -148,7 +148,7 @@ constexpr const char* kDie = R"({"type": "csg", "operation": "difference", "mate
 TEST(Csg, DieAgainstPointMembership) {
     // The first surface along random rays from outside against a search of inDie: fine steps, then
     // bisection of the first step where membership changes.
-    const Scene scene = csgScene(kDie);
+    const SceneDescription scene = csgScene(kDie);
     const CsgGeometry geometry(scene.csgs, scene.meshes);
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
@@ -196,7 +196,7 @@ TEST(Csg, DieAgainstPointMembership) {
 TEST(Csg, ShadowRaysPassThroughAHole) {
     // A cube with a cylinder drilled along z: rays through the hole are not occluded, the others are,
     // through every backend.
-    const Scene scene = csgScene(std::string(R"({"type": "csg", "operation": "difference", "operands": [)") + kCube +
+    const SceneDescription scene = csgScene(std::string(R"({"type": "csg", "operation": "difference", "operands": [)") + kCube +
                                  R"(, {"type": "cylinder", "radius": 0.5, "height": 3, "transform": {"rotate": {"axis": [1, 0, 0], "degrees": 90}}}]})");
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     std::vector<Ray> rays;
@@ -217,7 +217,7 @@ TEST(Csg, ShadowRaysPassThroughAHole) {
 }
 
 /// A scene of a glass object (JSON) over a checkered floor, lit by a point light.
-Scene glassScene(const std::string& object) {
+SceneDescription glassScene(const std::string& object) {
     return parseScene(R"({"camera": {"position": [0.5, 1, 5], "look_at": [0, 0, 0]},
         "image": {"width": 64, "height": 48}, "background": [0.2, 0.3, 0.5],
         "lights": [{"type": "point", "position": [2, 4, 3], "intensity": 20}],
@@ -227,7 +227,7 @@ Scene glassScene(const std::string& object) {
                     )" + object + "]}", "glass.json");
 }
 
-void expectSameImage(const Scene& a, const Scene& b, const std::string& what) {
+void expectSameImage(const SceneDescription& a, const SceneDescription& b, const std::string& what) {
     const ImageDifference diff = compareImages(renderWithReference(a, 2, {}), renderWithReference(b, 2, {}), 0.01f);
     EXPECT_LT(diff.meanAbsolute, 2e-4) << what;
     EXPECT_LT(diff.pixelsOver, 8u) << what;
@@ -258,7 +258,7 @@ TEST(Csg, RefractionThroughACsgSolidEqualsThePlainSolid) {
 }
 
 TEST(Csg, EveryBackendAndStructureFindsTheSameHits) {
-    const Scene scene = csgScene(std::string(kDie) + "," + twoSpheres("xor").replace(0, 1, R"({"transform": {"translate": [3, 0, 0]}, )"));
+    const SceneDescription scene = csgScene(std::string(kDie) + "," + twoSpheres("xor").replace(0, 1, R"({"transform": {"translate": [3, 0, 0]}, )"));
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     const std::vector<Ray> rays = testing::rayFan({1, 1.5f, 7}, {-2, -2}, {5, 2}, 60, 40);
     const std::vector<Hit> expected = testing::traceThrough(geometry, "wideray", "bvh8", rays);
@@ -277,8 +277,8 @@ TEST(Csg, EveryBackendAndStructureFindsTheSameHits) {
 }
 
 TEST(Csg, SceneKeysRoundTripAndBadValuesNameTheirKey) {
-    const Scene first = csgScene(kDie);
-    const Scene second = parseScene(writeScene(first), "written.json");
+    const SceneDescription first = csgScene(kDie);
+    const SceneDescription second = parseScene(writeScene(first), "written.json");
     ASSERT_EQ(second.csgs.size(), 1u);
     EXPECT_EQ(second.csgs[0].nodes.size(), first.csgs[0].nodes.size());
     EXPECT_EQ(second.csgs[0].analytics.size(), first.csgs[0].analytics.size());

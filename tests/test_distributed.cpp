@@ -23,7 +23,7 @@ namespace {
 const std::filesystem::path kSourceDir = WIDERAY_SOURCE_DIR;
 
 /// A scene of one sphere with `animation` (JSON) as its "animation".
-Scene animatedScene(const std::string& animation) {
+SceneDescription animatedScene(const std::string& animation) {
     return parseScene(R"({"camera": {"position": [0, 0, 5], "fov": 40}, "animation": )" + animation +
                           R"(, "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}]})",
                       "anim.json");
@@ -39,7 +39,7 @@ std::string animationError(const std::string& animation) {
 }
 
 TEST(Animation, KeyframesAreMetExactlyAndHeldOutsideTheirFrames) {
-    const Scene scene = animatedScene(R"({"frames": [0, 40], "keyframes": [
+    const SceneDescription scene = animatedScene(R"({"frames": [0, 40], "keyframes": [
         {"frame": 5, "position": [0, 0, 5], "look_at": [0, 0, 0]},
         {"frame": 12, "position": [3, 1, 4], "look_at": [0.5, 0, 0], "fov": 30},
         {"frame": 30, "position": [4, 2, -1], "look_at": [0, 0.2, 0]}]})");
@@ -65,7 +65,7 @@ TEST(Animation, KeyframesAreMetExactlyAndHeldOutsideTheirFrames) {
 
 TEST(Animation, EvenlySpacedCollinearKeysMoveAtConstantSpeed) {
     // Catmull-Rom tangents over frame numbers: keys on a line at even speed are followed exactly.
-    const Scene scene = animatedScene(R"({"keyframes": [
+    const SceneDescription scene = animatedScene(R"({"keyframes": [
         {"frame": 1, "position": [0, 0, 5]}, {"frame": 11, "position": [2, 0, 5]},
         {"frame": 16, "position": [3, 0, 5]}, {"frame": 36, "position": [7, 0, 5]}]})");
     const Animation& a = *scene.animation;
@@ -75,7 +75,7 @@ TEST(Animation, EvenlySpacedCollinearKeysMoveAtConstantSpeed) {
 }
 
 TEST(Animation, ACameraListGivesOneCameraPerFrame) {
-    const Scene scene = animatedScene(R"({"frames": [10, 12], "cameras": [
+    const SceneDescription scene = animatedScene(R"({"frames": [10, 12], "cameras": [
         {"position": [0, 0, 5]}, {"position": [1, 0, 5], "fov": 20}, {"position": [2, 0, 5]}]})");
     const Animation& a = *scene.animation;
     EXPECT_EQ(a.firstFrame, 10);
@@ -107,10 +107,10 @@ TEST(Animation, BadAnimationsNameTheirKey) {
 }
 
 TEST(Animation, SurvivesAWriteAndReadBack) {
-    const Scene scene = animatedScene(R"({"frames": [2, 30], "keyframes": [
+    const SceneDescription scene = animatedScene(R"({"frames": [2, 30], "keyframes": [
         {"frame": 1, "position": [0, 0, 5]}, {"frame": 9, "position": [3, 1, 4], "fov": 30},
         {"frame": 20, "position": [4, 2, -1], "look_at": [0, 0.2, 0], "shutter": [0, 0.5]}]})");
-    const Scene back = parseScene(writeScene(scene), "back.json");
+    const SceneDescription back = parseScene(writeScene(scene), "back.json");
     ASSERT_TRUE(back.animation);
     EXPECT_EQ(back.animation->firstFrame, 2);
     EXPECT_EQ(back.animation->lastFrame, 30);
@@ -157,7 +157,7 @@ TEST(FrameParts, PartsCoverEveryTileOnce) {
 /// The default scene rendered whole, and in `parts` parts joined in a shuffled order.
 void expectPartsJoinToTheWholeImage(Aov aov, uint32_t parts, int width, int height) {
     FlushToZeroScope ftz;
-    const Scene scene = loadScene(kSourceDir / "scenes/default.json");
+    const SceneDescription scene = loadScene(kSourceDir / "scenes/default.json");
     std::unique_ptr<Tracer> tracer = buildWideBvh(std::make_shared<const SceneGeometry>(scene), {})->tracer({"auto"});
     RenderOptions options;
     options.width = width;

@@ -164,7 +164,7 @@ INSTANTIATE_TEST_SUITE_P(EmbreeRealMeshes, EmbreeCrosscheckShared,
 
 /// The default scene's sphere goes through Embree's user geometry callbacks; half the rays aim at it.
 TEST(EmbreeCrosscheck, UserGeometryMatchesOurs) {
-    Scene scene = loadScene(kSourceDir / "scenes/default.json");
+    SceneDescription scene = loadScene(kSourceDir / "scenes/default.json");
     ASSERT_FALSE(scene.spheres.empty());
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     std::vector<Ray> rays = testing::randomRays(*(*geometry)[0].triangles(), 20000, 15);
@@ -210,7 +210,7 @@ TEST(EmbreeCrosscheck, InvalidRaysMissAndAreNotOccluded) {
     }
 }
 
-Image renderDefaultScene(const Tracer& tracer, const Scene& scene) {
+Image renderDefaultScene(const Tracer& tracer, const SceneDescription& scene) {
     RenderOptions options;
     options.width = 160;
     options.height = 120;
@@ -220,7 +220,7 @@ Image renderDefaultScene(const Tracer& tracer, const Scene& scene) {
 
 TEST(EmbreeCrosscheck, DefaultSceneRendersAlike) {
     FlushToZeroScope ftz;
-    Scene scene = loadScene(kSourceDir / "scenes/default.json");
+    SceneDescription scene = loadScene(kSourceDir / "scenes/default.json");
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     Image ours = renderDefaultScene(*referenceTracer(geometry), scene);
     std::unique_ptr<Tracer> embree = embreeMedium(geometry)->tracer({});

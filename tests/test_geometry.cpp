@@ -17,8 +17,8 @@ namespace {
 
 /// The quad [-1, 1]^2 at y = 0 placed `count` times along x, 3 apart, and spheres of radius 0.5 at
 /// y = 3 above them.
-Scene quadsAndSpheres(int count, int spheres) {
-    Scene scene;
+SceneDescription quadsAndSpheres(int count, int spheres) {
+    SceneDescription scene;
     scene.materials.push_back({});
     scene.meshes = {makeQuad()};
     for (int i = 0; i < count; ++i) {

@@ -34,7 +34,7 @@ bool sameSurface(const SceneGeometry& flat, const Hit& a, const SceneGeometry& t
 
 TEST(Instancing, HitsEqualTheFlattenedScenes) {
     FlushToZeroScope ftz;
-    const Scene scene = testing::instancedScene();
+    const SceneDescription scene = testing::instancedScene();
     auto flat = std::make_shared<const SceneGeometry>(scene, Instancing::Flatten);
     auto twoLevel = std::make_shared<const SceneGeometry>(scene, Instancing::TwoLevel);
     ASSERT_EQ(flat->instances(), nullptr);
@@ -75,7 +75,7 @@ TEST(Instancing, HitsEqualTheFlattenedScenes) {
 }
 
 TEST(Instancing, ShadowRaysAndRendersMatchTheFlattenedScene) {
-    Scene scene = testing::instancedScene();
+    SceneDescription scene = testing::instancedScene();
     scene.image = {48, 36, 1};
     const Image flat = [&] {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
@@ -95,7 +95,7 @@ TEST(Instancing, ShadowRaysAndRendersMatchTheFlattenedScene) {
 }
 
 TEST(Instancing, AutoMakesTwoLevelWhereCopiesWouldCostMemory) {
-    Scene scene;
+    SceneDescription scene;
     scene.materials = {{"grey"}};
     scene.meshes = {makeQuad(), makeIcosphere(5)};  // 2 and 20480 triangles
     for (int i = 0; i < 5; ++i) scene.instances.push_back({0, glm::translate(glm::mat4(1.0f), glm::vec3(float(i), 0, 0))});
@@ -115,7 +115,7 @@ TEST(Instancing, AutoMakesTwoLevelWhereCopiesWouldCostMemory) {
 }
 
 TEST(Instancing, RepeatPlacesCopiesAndBadValuesNameTheirKey) {
-    const Scene scene = parseScene(R"({"lights": [{"type": "point", "position": [0, 5, 0]}], "objects": [
+    const SceneDescription scene = parseScene(R"({"lights": [{"type": "point", "position": [0, 5, 0]}], "objects": [
         {"type": "generated", "shape": "cube", "transform": {"translate": [1, 0, 0]},
          "repeat": {"count": [3, 2, 1], "step": [4, 5, 0], "turn": 30, "seed": 2}}]})", "repeat.json");
     ASSERT_EQ(scene.instances.size(), 6u);
@@ -131,7 +131,7 @@ TEST(Instancing, RepeatPlacesCopiesAndBadValuesNameTheirKey) {
 }
 
 TEST(Instancing, TenThousandInstancesTakeLittleMoreThanOneMesh) {
-    Scene scene;
+    SceneDescription scene;
     scene.materials = {{"grey"}};
     scene.meshes = {makeIcosphere(5)};
     for (int j = 0; j < 100; ++j)

@@ -138,7 +138,7 @@ void expectIsasAgree(const SceneAccel<N>& accel, const TriangleMesh& mesh, const
 }
 
 template <int N>
-void checkScene(const Scene& scene, int size) {
+void checkScene(const SceneDescription& scene, int size) {
     FlushToZeroScope ftz;
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     const TriangleMesh& world = *(*geometry)[0].triangles();
@@ -156,13 +156,13 @@ void checkScene(const Scene& scene, int size) {
 }
 
 TEST(Kernels, MatchReferenceOnDefaultScene) {
-    Scene scene = loadSceneOrMesh(std::filesystem::path(WIDERAY_SOURCE_DIR) / "scenes/default.json");
+    SceneDescription scene = loadSceneOrMesh(std::filesystem::path(WIDERAY_SOURCE_DIR) / "scenes/default.json");
     checkScene<4>(scene, 128);
     checkScene<8>(scene, 128);
 }
 
 TEST(Kernels, MatchReferenceOnGeneratedMeshes) {
-    Scene scene;
+    SceneDescription scene;
     scene.meshes = {makeTorus(1.0f, 0.3f, 96, 48)};
     scene.instances.push_back({});
     scene.camera.position = {0.5f, 2.0f, 3.0f};
@@ -177,7 +177,7 @@ TEST(Kernels, MatchReferenceThroughTwoLevelInstances) {
     // The instance leaves trace their meshes with the ISA's single-ray kernel whatever kernel reached
     // them: every kernel, packets and streams included, returns the reference's hits bit for bit.
     FlushToZeroScope ftz;
-    const Scene scene = testing::instancedScene();
+    const SceneDescription scene = testing::instancedScene();
     auto geometry = std::make_shared<const SceneGeometry>(scene, Instancing::TwoLevel);
     ASSERT_NE(geometry->instances(), nullptr);
     const TriangleMesh flattened = flattenTriangles(scene);
@@ -201,7 +201,7 @@ TEST_P(SharedMeshKernels, MatchReference) {
 #else
     const int size = 256;
 #endif
-    Scene scene = sceneFromMesh(*dir / GetParam(), size, size);
+    SceneDescription scene = sceneFromMesh(*dir / GetParam(), size, size);
     scene.lights[0].position = scene.camera.position + (scene.lights[0].position - scene.camera.position) * 0.5f;
     checkScene<8>(scene, size);
     checkScene<4>(scene, size / 2);
@@ -261,7 +261,7 @@ namespace {
 /// kernels (which visit nodes for groups of rays) report work of their own.
 TEST(Kernels, CostsMeasureTheChosenKernel) {
     FlushToZeroScope ftz;
-    Scene scene = loadSceneOrMesh(std::filesystem::path(WIDERAY_SOURCE_DIR) / "scenes/default.json");
+    SceneDescription scene = loadSceneOrMesh(std::filesystem::path(WIDERAY_SOURCE_DIR) / "scenes/default.json");
     SceneAccel<8> accel(std::make_shared<const SceneGeometry>(scene));
     const std::vector<Ray> rays = primaryRays(scene, 64, 64);
     // A ray that found something tested a leaf and a primitive; 777 is what the arrays start with.

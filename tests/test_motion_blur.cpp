@@ -25,8 +25,8 @@ const glm::mat4 kEnd = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(1.5
 
 /// A torus mesh instanced twice and an ellipsoid, moving from kStart to kEnd (or still at `at`), over
 /// a floor.
-Scene movingScene(std::optional<glm::mat4> at) {
-    Scene scene;
+SceneDescription movingScene(std::optional<glm::mat4> at) {
+    SceneDescription scene;
     scene.materials = {{"grey"}};
     scene.meshes = {makeTorus(0.6f, 0.25f, 24, 12), makeQuad()};
     const glm::mat4 offset = glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -1.5f));
@@ -45,7 +45,7 @@ Scene movingScene(std::optional<glm::mat4> at) {
     return scene;
 }
 
-std::vector<Ray> raysAt(const Scene& scene, float time) {
+std::vector<Ray> raysAt(const SceneDescription& scene, float time) {
     std::vector<Ray> rays = primaryRays(scene, 64, 48);
     for (Ray& r : rays) r.time = time;
     return rays;
@@ -79,7 +79,7 @@ TEST(MotionBlur, EveryBackendAndKernelAgreesAtAnyTime) {
     // Between the ends the objects leave both end boxes' union only if the bounds were wrong: the
     // wide BVH would then miss what Embree finds (its motion BVH bounds the motion itself).
     FlushToZeroScope ftz;
-    const Scene scene = movingScene(std::nullopt);
+    const SceneDescription scene = movingScene(std::nullopt);
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     std::vector<Ray> rays = primaryRays(scene, 96, 72);
     std::mt19937 rng(3);
@@ -138,7 +138,7 @@ constexpr const char* kBlurScene = R"({
 })";
 
 TEST(MotionBlur, TheShutterIsSampledDeterministically) {
-    const Scene scene = parseScene(kBlurScene, "blur.json");
+    const SceneDescription scene = parseScene(kBlurScene, "blur.json");
     EXPECT_EQ(scene.camera.shutterClose, 1.0f);
     ASSERT_EQ(scene.analytics.size(), 1u);
     EXPECT_TRUE(scene.analytics[0].endTransform.has_value());
@@ -147,7 +147,7 @@ TEST(MotionBlur, TheShutterIsSampledDeterministically) {
     const Image a = renderWithReference(scene, 1, {}), b = renderWithReference(scene, 2, {});
     EXPECT_EQ(a.pixels, b.pixels);
     // The ball's track is smeared: pixels on it are partly red, partly floor.
-    Scene still = scene;
+    SceneDescription still = scene;
     still.camera.shutterClose = 0.0f;  // every ray at time 0
     const Image sharp = renderWithReference(still, 2, {});
     EXPECT_NE(sharp.pixels, a.pixels);
@@ -158,7 +158,7 @@ TEST(MotionBlur, TheShutterIsSampledDeterministically) {
     }
     EXPECT_GT(blurred, 10);
     // The writer keeps the motion.
-    const Scene written = parseScene(writeScene(scene), "written.json");
+    const SceneDescription written = parseScene(writeScene(scene), "written.json");
     ASSERT_TRUE(written.analytics[0].endTransform.has_value());
     EXPECT_EQ(*written.analytics[0].endTransform, *scene.analytics[0].endTransform);
     EXPECT_EQ(written.camera.shutterClose, 1.0f);

@@ -14,7 +14,7 @@
 namespace wideray {
 namespace {
 
-Image renderPath(const Scene& scene, int threads, int width, int height, ShadingOrder order = ShadingOrder::Material) {
+Image renderPath(const SceneDescription& scene, int threads, int width, int height, ShadingOrder order = ShadingOrder::Material) {
     RenderOptions options;
     options.width = width;
     options.height = height;
@@ -32,7 +32,7 @@ double meanOf(const Image& image, int channel) {
 // uniform white background: light is neither lost nor made however often a path bounces before it
 // leaves through an end (Russian roulette included), so the image is the background everywhere.
 TEST(PathTracer, WhiteFurnaceShowsOnlyTheBackground) {
-    const Scene scene = parseScene(R"({
+    const SceneDescription scene = parseScene(R"({
         "camera": {"position": [0, 0, 1], "look_at": [0.3, -0.2, -1], "fov": 60},
         "image": {"spp": 32},
         "background": [1, 1, 1],
@@ -64,7 +64,7 @@ TEST(PathTracer, WhiteFurnaceShowsOnlyTheBackground) {
 // roulette decides most paths' length.
 TEST(PathTracer, InterreflectionInsideADiffuseSphereSumsTheGeometricSeries) {
     const float albedo = 0.5f, intensity = 2.0f, radius = 1.0f;
-    const Scene scene = parseScene(R"({
+    const SceneDescription scene = parseScene(R"({
         "camera": {"position": [0.2, -0.3, 0.1], "look_at": [1, 0, 0], "fov": 90},
         "image": {"spp": 64},
         "render": {"integrator": "path", "max_depth": 1024},
@@ -91,7 +91,7 @@ TEST(PathTracer, DiffusePlaneUnderSphereAndQuadLightsMatchesTheirIrradiance) {
     const float albedo = 0.8f, sphereRadiance = 4.0f, quadRadiance = 3.0f, radius = 0.4f;
     const glm::vec3 center(1.6f, 1.0f, 0.0f);
     const glm::vec3 corners[4] = {{-2.4f, 1.2f, -0.5f}, {-1.4f, 1.2f, -0.5f}, {-1.4f, 1.2f, 0.5f}, {-2.4f, 1.2f, 0.5f}};
-    const Scene scene = parseScene(R"({
+    const SceneDescription scene = parseScene(R"({
         "camera": {"position": [0, 3, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov": 40},
         "image": {"spp": 64},
         "render": {"integrator": "path"},
@@ -127,7 +127,7 @@ TEST(PathTracer, DiffusePlaneUnderSphereAndQuadLightsMatchesTheirIrradiance) {
 }
 
 TEST(PathTracer, SameImageWithAnyThreadCountAndInAnyShadingOrder) {
-    Scene scene = loadScene(std::filesystem::path(WIDERAY_SOURCE_DIR) / "scenes" / "default.json");
+    SceneDescription scene = loadScene(std::filesystem::path(WIDERAY_SOURCE_DIR) / "scenes" / "default.json");
     scene.render.integrator = Integrator::Path;
     scene.image.samplesPerPixel = 2;
     const Image one = renderPath(scene, 1, 64, 48), two = renderPath(scene, 2, 64, 48);

@@ -78,7 +78,7 @@ namespace {
 /// Every kernel, with and without the shadow cache, renders exactly the reference's image.
 TEST(Render, KernelsAndShadowCacheRenderTheReferenceImage) {
     FlushToZeroScope ftz;
-    Scene scene = loadScene(kSourceDir / "scenes/metals.json");
+    SceneDescription scene = loadScene(kSourceDir / "scenes/metals.json");
     std::shared_ptr<const Structure> bvh = buildWideBvh(std::make_shared<const SceneGeometry>(scene), {});
     RenderOptions options;
     options.width = 96;
@@ -111,7 +111,7 @@ TEST(Render, HighQualityBuildRendersTheSameImage) {
     auto dir = sharedScenesDir();
     if (!dir) GTEST_SKIP() << "needs ../shared/scenes (or WIDERAY_SCENES)";
     FlushToZeroScope ftz;
-    Scene scene = loadSceneOrMesh((*dir / "crytek-sponza/sponza.obj").string(), 96, 72);
+    SceneDescription scene = loadSceneOrMesh((*dir / "crytek-sponza/sponza.obj").string(), 96, 72);
     auto geometry = std::make_shared<const SceneGeometry>(scene);
     RenderOptions options;
     options.width = 96;

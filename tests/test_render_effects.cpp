@@ -21,7 +21,7 @@ namespace {
 const std::filesystem::path kSourceDir = WIDERAY_SOURCE_DIR;
 constexpr int kWidth = 80, kHeight = 60;
 
-Image renderScene(const Scene& scene, int threads, int width, int height) {
+Image renderScene(const SceneDescription& scene, int threads, int width, int height) {
     RenderOptions options;
     options.width = width;
     options.height = height;
@@ -31,7 +31,7 @@ Image renderScene(const Scene& scene, int threads, int width, int height) {
 class EffectScene : public testing::TestWithParam<std::string> {};
 
 TEST_P(EffectScene, IsIdenticalWithOneAndTwoThreadsAndMatchesItsReference) {
-    const Scene scene = loadScene(kSourceDir / "scenes" / (GetParam() + ".json"));
+    const SceneDescription scene = loadScene(kSourceDir / "scenes" / (GetParam() + ".json"));
     const Image one = renderScene(scene, 1, kWidth, kHeight), two = renderScene(scene, 2, kWidth, kHeight);
     ASSERT_EQ(one.pixels.size(), two.pixels.size());
     EXPECT_TRUE(one.pixels == two.pixels);

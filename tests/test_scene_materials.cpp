@@ -28,7 +28,7 @@ std::string sceneWithMaterials(const std::string& materials, const std::string& 
 std::string sceneWithMaterial(const std::string& material) { return sceneWithMaterials(R"({"m": )" + material + "}"); }
 
 Material parseMaterial(const std::string& material, const fs::path& file = kSceneFile) {
-    const Scene scene = parseScene(sceneWithMaterial(material), file);
+    const SceneDescription scene = parseScene(sceneWithMaterial(material), file);
     return scene.materials.at(0);
 }
 
@@ -204,7 +204,7 @@ TEST(SceneMaterials, ImageTexturesLoadRelativeToTheSceneOnce) {
         R"({"a": {"type": "diffuse", "color": {"type": "image", "file": "textures/bw.png"}},
             "b": {"type": "plastic", "color": {"type": "image", "file": "textures/bw.png"}},
             "c": {"type": "conductor", "preset": "silver", "roughness": {"type": "image", "file": "textures/bw.png"}}})");
-    const Scene scene = parseScene(text, dir.path() / "scene.json");
+    const SceneDescription scene = parseScene(text, dir.path() / "scene.json");
     const Material& a = scene.materials.at(0);
     ASSERT_TRUE(a.colorTexture);
     EXPECT_EQ(a.colorTexture->type, TextureType::Image);
@@ -220,13 +220,13 @@ TEST(SceneMaterials, ImageTexturesLoadRelativeToTheSceneOnce) {
 // ---- fog and render settings
 
 TEST(SceneMaterials, FogAndRenderSettings) {
-    const Scene defaults = parseScene(sceneWithMaterials("{}"), kSceneFile);
+    const SceneDescription defaults = parseScene(sceneWithMaterials("{}"), kSceneFile);
     EXPECT_EQ(defaults.fog.density, 0.0f);
     EXPECT_EQ(defaults.render.maxDepth, 8);
     EXPECT_EQ(defaults.render.minThroughput, 0.01f);
     EXPECT_FALSE(defaults.render.polarized);
 
-    const Scene scene = parseScene(
+    const SceneDescription scene = parseScene(
         sceneWithMaterials("{}", R"("fog": {"density": 0.05, "color": [0.7, 0.8, 0.9]},
                                    "render": {"max_depth": 12, "min_throughput": 0.001, "polarized": true})"),
         kSceneFile);
@@ -274,8 +274,8 @@ TEST(SceneMaterials, RoundTrip) {
             "glass": {"type": "dielectric", "ior": 1.52, "absorption": [0.3, 0.01, 0.2], "roughness": {"type": "image", "file": "bw.png"}}})",
         R"("fog": {"density": 0.125, "color": [0.3, 0.4, 0.5]},
            "render": {"max_depth": 3, "min_throughput": 0.05, "polarized": true})");
-    const Scene first = parseScene(text, dir.path() / "scene.json");
-    const Scene second = parseScene(writeScene(first), "elsewhere/copy.json");
+    const SceneDescription first = parseScene(text, dir.path() / "scene.json");
+    const SceneDescription second = parseScene(writeScene(first), "elsewhere/copy.json");
     EXPECT_EQ(writeScene(second), writeScene(first));
     EXPECT_EQ(second.fog.density, first.fog.density);
     EXPECT_EQ(second.fog.color, first.fog.color);

@@ -24,7 +24,7 @@ namespace fs = std::filesystem;
 const fs::path kRepo = fs::path(__FILE__).parent_path().parent_path();
 const fs::path kSceneFile = "memory/test_scene.json";
 
-Scene parse(const std::string& text) { return parseScene(text, kSceneFile); }
+SceneDescription parse(const std::string& text) { return parseScene(text, kSceneFile); }
 
 /// Parses `text`, expecting an InputError whose message names the scene file, `location` and `fragment`.
 void expectError(const std::string& text, const std::string& location, const std::string& fragment) {
@@ -58,7 +58,7 @@ const char* kTriangleObj = "mtllib tri.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n
                            "usemtl red\nf 1 2 3\nusemtl blue\nf 2 4 3\n";
 const char* kTriangleMtl = "newmtl red\nKd 0.9 0.1 0.1\nnewmtl blue\nKd 0.1 0.1 0.9\n";
 
-const Material* findMaterial(const Scene& scene, const std::string& name) {
+const Material* findMaterial(const SceneDescription& scene, const std::string& name) {
     for (const Material& m : scene.materials)
         if (m.name == name) return &m;
     return nullptr;
@@ -67,7 +67,7 @@ const Material* findMaterial(const Scene& scene, const std::string& name) {
 // ---- valid scenes
 
 TEST(SceneParser, DefaultSceneParses) {
-    const Scene scene = loadScene(kRepo / "scenes/default.json");
+    const SceneDescription scene = loadScene(kRepo / "scenes/default.json");
     EXPECT_EQ(scene.image.width, 640);
     EXPECT_EQ(scene.image.height, 480);
     EXPECT_EQ(scene.image.samplesPerPixel, 1);
@@ -91,14 +91,14 @@ TEST(SceneParser, BunnySceneParses) {
     // The scene names the bunny by a path relative to itself, in the shared folder beside the repository.
     if (!std::filesystem::exists(kRepo / "../shared/scenes/stanford-bunny/bun_zipper.ply"))
         GTEST_SKIP() << "needs ../shared/scenes beside the repository";
-    const Scene scene = loadScene(kRepo / "scenes/bunny.json");
+    const SceneDescription scene = loadScene(kRepo / "scenes/bunny.json");
     ASSERT_EQ(scene.meshes.size(), 2u);
     EXPECT_EQ(scene.meshes[0].triangleCount() + scene.meshes[0].droppedDegenerate, 69451u);
     EXPECT_EQ(scene.meshes[0].positions.size(), 35947u);
 }
 
 TEST(SceneParser, DefaultsApplyToOmittedSettings) {
-    const Scene scene = parse(sceneWith(""));
+    const SceneDescription scene = parse(sceneWith(""));
     const Camera defaults;
     EXPECT_EQ(scene.camera.position, defaults.position);
     EXPECT_EQ(scene.camera.fovY, defaults.fovY);
@@ -112,7 +112,7 @@ TEST(SceneParser, DefaultsApplyToOmittedSettings) {
 }
 
 TEST(SceneParser, CommentsAreAllowed) {
-    const Scene scene = parse("// a comment\n" + sceneWith(R"("image": {"spp": 4 /* four */})"));
+    const SceneDescription scene = parse("// a comment\n" + sceneWith(R"("image": {"spp": 4 /* four */})"));
     EXPECT_EQ(scene.image.samplesPerPixel, 4);
 }
 
@@ -145,9 +145,9 @@ TEST(SceneParser, RoundTripGivesEqualScene) {
         {"type": "sphere", "center": [1, 1, 1], "radius": 0.5, "material": "red",
          "transform": {"scale": 2, "rotate": {"axis": [0, 1, 0], "degrees": 45}}}
       ]})";
-    const Scene first = parseScene(text, dir.path() / "scene.json");
+    const SceneDescription first = parseScene(text, dir.path() / "scene.json");
     const std::string written = writeScene(first);
-    const Scene second = parseScene(written, "written.json");
+    const SceneDescription second = parseScene(written, "written.json");
 
     EXPECT_EQ(first.camera.position, second.camera.position);
     EXPECT_EQ(first.camera.lookAt, second.camera.lookAt);
@@ -203,7 +203,7 @@ TEST(SceneParser, RoundTripGivesEqualScene) {
 }
 
 TEST(SceneParser, TransformScalesThenRotatesThenTranslates) {
-    const Scene scene = parse(sceneOfObjects(R"([{"type": "triangles",
+    const SceneDescription scene = parse(sceneOfObjects(R"([{"type": "triangles",
         "vertices": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "indices": [[0, 1, 2]],
         "transform": {"translate": [10, 0, 0], "rotate": {"axis": [0, 0, 1], "degrees": 90}, "scale": 2}}])"));
     const TriangleMesh world = flattenTriangles(scene);
@@ -214,7 +214,7 @@ TEST(SceneParser, TransformScalesThenRotatesThenTranslates) {
 }
 
 TEST(SceneParser, RotationListAppliesInOrder) {
-    const Scene scene = parse(sceneOfObjects(R"([{"type": "triangles",
+    const SceneDescription scene = parse(sceneOfObjects(R"([{"type": "triangles",
         "vertices": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "indices": [[0, 1, 2]],
         "transform": {"rotate": [{"axis": [0, 0, 1], "degrees": 90}, {"axis": [1, 0, 0], "degrees": 90}]}}])"));
     const TriangleMesh world = flattenTriangles(scene);
@@ -223,14 +223,14 @@ TEST(SceneParser, RotationListAppliesInOrder) {
 }
 
 TEST(SceneParser, MatrixIsRowMajor) {
-    const Scene scene = parse(sceneOfObjects(R"([{"type": "triangles",
+    const SceneDescription scene = parse(sceneOfObjects(R"([{"type": "triangles",
         "vertices": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "indices": [[0, 1, 2]],
         "transform": {"matrix": [2, 0, 0, 5,  0, 1, 0, 6,  0, 0, 1, 7,  0, 0, 0, 1]}}])"));
     EXPECT_EQ(flattenTriangles(scene).positions[0], glm::vec3(7, 6, 7));
 }
 
 TEST(SceneParser, SphereTransformMovesAndScales) {
-    const Scene scene = parse(sceneOfObjects(R"([{"type": "sphere", "center": [1, 0, 0], "radius": 0.5,
+    const SceneDescription scene = parse(sceneOfObjects(R"([{"type": "sphere", "center": [1, 0, 0], "radius": 0.5,
         "transform": {"scale": 2, "rotate": {"axis": [0, 0, 1], "degrees": 90}, "translate": [0, 0, 3]}}])"));
     ASSERT_EQ(scene.spheres.size(), 1u);
     EXPECT_NEAR(glm::distance(scene.spheres[0].center, glm::vec3(0, 2, 3)), 0.0f, 1e-5f);
@@ -238,7 +238,7 @@ TEST(SceneParser, SphereTransformMovesAndScales) {
 }
 
 TEST(SceneParser, NormalsUseInverseTransposeAndMirrorsKeepWinding) {
-    const Scene scene = parse(sceneOfObjects(R"([{"type": "triangles",
+    const SceneDescription scene = parse(sceneOfObjects(R"([{"type": "triangles",
         "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]], "indices": [[0, 1, 2]],
         "normals": [[1, 1, 0], [0, 0, 1], [0, 0, 1]], "transform": {"scale": [-2, 1, 1]}}])"));
     const TriangleMesh world = flattenTriangles(scene);
@@ -251,7 +251,7 @@ TEST(SceneParser, NormalsUseInverseTransposeAndMirrorsKeepWinding) {
 }
 
 TEST(SceneParser, MeshesWithoutNormalsGetZeroNormalsWhenMixed) {
-    const Scene scene = parse(sceneOfObjects(R"([{"type": "generated", "shape": "cube"},
+    const SceneDescription scene = parse(sceneOfObjects(R"([{"type": "generated", "shape": "cube"},
         {"type": "generated", "shape": "icosphere", "subdivisions": 0}])"));
     const TriangleMesh world = flattenTriangles(scene);
     ASSERT_EQ(world.normals.size(), world.positions.size());
@@ -263,7 +263,7 @@ TEST(SceneParser, RelativeMeshPathsResolveAgainstTheSceneFolder) {
     TempDir dir;
     writeFile(dir.path() / "scenes/models/tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     writeFile(dir.path() / "scenes/room.json", sceneOfObjects(R"([{"type": "mesh", "file": "models/tri.obj"}])"));
-    const Scene scene = loadScene(dir.path() / "scenes/room.json");
+    const SceneDescription scene = loadScene(dir.path() / "scenes/room.json");
     ASSERT_EQ(scene.meshes.size(), 1u);
     EXPECT_EQ(scene.meshes[0].triangleCount(), 1u);
     EXPECT_EQ(scene.meshes[0].positions[1], glm::vec3(1, 0, 0));
@@ -274,7 +274,7 @@ TEST(SceneParser, InstancesReuseOneMesh) {
     TempDir dir;
     writeFile(dir.path() / "tri.obj", kTriangleObj);
     writeFile(dir.path() / "tri.mtl", kTriangleMtl);
-    const Scene scene = parseScene(R"({"meshes": {"tri": {"file": "tri.obj"}}, "objects": [
+    const SceneDescription scene = parseScene(R"({"meshes": {"tri": {"file": "tri.obj"}}, "objects": [
         {"type": "instance", "mesh": "tri"},
         {"type": "instance", "mesh": "tri", "transform": {"translate": [0, 0, 1]}},
         {"type": "mesh", "file": "tri.obj"}]})", dir.path() / "scene.json");
@@ -287,7 +287,7 @@ TEST(SceneParser, MtlMaterialsAreImportedAndOverridable) {
     TempDir dir;
     writeFile(dir.path() / "tri.obj", kTriangleObj);
     writeFile(dir.path() / "tri.mtl", kTriangleMtl);
-    const Scene imported = parseScene(sceneOfObjects(R"([{"type": "mesh", "file": "tri.obj"}])"), dir.path() / "a.json");
+    const SceneDescription imported = parseScene(sceneOfObjects(R"([{"type": "mesh", "file": "tri.obj"}])"), dir.path() / "a.json");
     const Material* red = findMaterial(imported, "tri/red");
     ASSERT_NE(red, nullptr);
     EXPECT_EQ(red->color, glm::vec3(0.9f, 0.1f, 0.1f));
@@ -298,19 +298,19 @@ TEST(SceneParser, MtlMaterialsAreImportedAndOverridable) {
     EXPECT_EQ(imported.materials[world.faceMaterial[1]].name, "tri/blue");
 
     // A scene material with the plain name restyles the file's material.
-    const Scene restyled = parseScene(R"({"materials": {"red": {"type": "diffuse", "color": [0.5, 0, 0]}},
+    const SceneDescription restyled = parseScene(R"({"materials": {"red": {"type": "diffuse", "color": [0.5, 0, 0]}},
         "objects": [{"type": "mesh", "file": "tri.obj"}]})", dir.path() / "b.json");
     EXPECT_EQ(findMaterial(restyled, "tri/red"), nullptr);
     EXPECT_EQ(restyled.materials[flattenTriangles(restyled).faceMaterial[0]].color, glm::vec3(0.5f, 0, 0));
 
     // An object's material overrides every material of the file.
-    const Scene overridden = parseScene(R"({"materials": {"grey": {"type": "diffuse", "color": [0.3, 0.3, 0.3]}},
+    const SceneDescription overridden = parseScene(R"({"materials": {"grey": {"type": "diffuse", "color": [0.3, 0.3, 0.3]}},
         "objects": [{"type": "mesh", "file": "tri.obj", "material": "grey"}]})", dir.path() / "c.json");
     for (uint32_t m : flattenTriangles(overridden).faceMaterial) EXPECT_EQ(overridden.materials[m].name, "grey");
 }
 
 TEST(SceneParser, ZeroAreaTrianglesAreDroppedAndCounted) {
-    const Scene scene = parse(sceneOfObjects(R"([{"type": "triangles",
+    const SceneDescription scene = parse(sceneOfObjects(R"([{"type": "triangles",
         "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0], [2, 0, 0]], "indices": [[0, 1, 2], [0, 1, 3]]}])"));
     ASSERT_EQ(scene.meshes.size(), 1u);
     EXPECT_EQ(scene.meshes[0].triangleCount(), 1u);
@@ -420,7 +420,7 @@ TEST(SceneParserErrors, EmptyObjectList) { expectError(sceneOfObjects("[]"), "ob
 TEST(SceneParserErrors, NoObjectsKey) { expectError(R"({"image": {"spp": 2}})", "", "scene has no objects"); }
 
 TEST(SceneParser, SphereWithNonUniformScaleIsAnEllipsoid) {
-    const Scene scene = parse(sceneOfObjects(
+    const SceneDescription scene = parse(sceneOfObjects(
         R"([{"type": "sphere", "center": [1, 0, 0], "radius": 2, "transform": {"scale": [1, 3, 1]}},
             {"type": "sphere", "center": [1, 0, 0], "radius": 2, "transform": {"scale": 3}}])"));
     ASSERT_EQ(scene.analytics.size(), 1u);

@@ -32,7 +32,7 @@ TEST(Terrain, RidgedMultifractalIsDeterministicAndScaled) {
 constexpr const char* kTerrainObject = R"("resolution": 48, "octaves": 5, "height": 0.35, "seed": 2,
      "transform": {"scale": [3, 2, 3], "rotate": {"axis": [0, 1, 0], "degrees": 20}, "translate": [0.5, -1, 0]})";
 
-Scene terrainScene(const char* type) {
+SceneDescription terrainScene(const char* type) {
     const std::string object = std::string(type) == "heightfield" ? R"({"type": "heightfield", )"
                                                                     : R"({"type": "generated", "shape": "terrain", )";
     return parseScene(R"({"lights": [{"type": "point", "position": [0, 5, 0]}], "objects": [)" + object + kTerrainObject + "}]}",
@@ -40,7 +40,7 @@ Scene terrainScene(const char* type) {
 }
 
 TEST(Terrain, HeightFieldAgreesWithTheMesh) {
-    const Scene field = terrainScene("heightfield"), mesh = terrainScene("generated");
+    const SceneDescription field = terrainScene("heightfield"), mesh = terrainScene("generated");
     ASSERT_EQ(field.heightFields.size(), 1u);
     std::mt19937 rng(4);
     std::uniform_real_distribution<float> dist(0.0f, 1.0f);
@@ -53,7 +53,7 @@ TEST(Terrain, HeightFieldAgreesWithTheMesh) {
         const glm::vec3 d = glm::normalize(target - o);
         rays.push_back({o.x, o.y, o.z, d.x, d.y, d.z, 0.0f, std::numeric_limits<float>::infinity()});
     }
-    auto trace = [&](const Scene& scene, const std::string& accel) {
+    auto trace = [&](const SceneDescription& scene, const std::string& accel) {
         StructureOptions options;
         options.accel = accel;
         std::vector<Hit> hits(rays.size());

@@ -7,6 +7,7 @@
 
 #include "accel/build_ref.h"
 #include "core/bounds.h"
+#include "wideray/options.h"
 
 namespace wideray {
 
@@ -29,9 +30,9 @@ enum class SplitMethod { Sah, Median };
 /// opening the largest child until a node has N.
 enum class CollapseMethod { Sah, Greedy };
 
-/// Fast: object splits only, each primitive in one leaf. High: spatial splits too, which clip
-/// primitives so that one may be referenced by several leaves (within replicationBudget).
-enum class BuildQuality { Fast, High };
+// BuildQuality (wideray/options.h), Fast: object splits only, each primitive in one leaf. High: spatial
+// splits too, which clip primitives so that one may be referenced by several leaves (within
+// replicationBudget).
 
 class TriangleSplitter;
 

@@ -10,10 +10,6 @@
 
 namespace wideray {
 
-/// How a batch of rays was made: coherent batches come in screen-space blocks (Morton order) and
-/// go to packet kernels; incoherent ones go to the kernel chosen for them.
-enum class Coherence { Coherent, Incoherent };
-
 class Tracer {
 public:
     virtual ~Tracer() = default;

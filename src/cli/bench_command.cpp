@@ -205,7 +205,7 @@ std::string shortName(const std::string& path) { return std::filesystem::path(pa
 void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& results, nlohmann::json& builds,
               int threads) {
     auto [width, height] = parseSize(args.size);
-    Scene scene = loadSceneOrMesh(input, width, height);
+    SceneDescription scene = loadSceneOrMesh(input, width, height);
     // One geometry for every structure, so that all trace the same primitives.
     auto geometry = std::make_shared<const SceneGeometry>(scene, instancingFor(args.instancing, args.accels));
     const std::string name = shortName(input);

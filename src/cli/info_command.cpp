@@ -36,7 +36,7 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
         if (!cpuSupports(chosen)) exitCode = 1;
         for (const std::string& file : *files) {
             try {
-                Scene scene = loadSceneOrMesh(file);
+                SceneDescription scene = loadSceneOrMesh(file);
                 const std::vector<std::string> accels = accel->empty() ? std::vector<std::string>{"bvh4", "bvh8"} : *accel;
                 auto geometry = std::make_shared<const SceneGeometry>(scene, instancingFor(*instancing, accels));
                 size_t dropped = 0;

@@ -22,7 +22,7 @@ namespace {
 /// Renders each frame of a scene file in this process, loading the scene and building its tracer once.
 void renderScene(const RenderArgs& args, const std::string& sceneFile) {
     LoadedScene loaded = loadForRender(args, sceneFile);
-    Scene& scene = loaded.scene;
+    SceneDescription& scene = loaded.scene;
     const std::optional<FrameRange> range =
         scene.animation ? std::optional<FrameRange>({scene.animation->firstFrame, scene.animation->lastFrame}) : std::nullopt;
     std::optional<BackendTracer> other;

@@ -64,7 +64,7 @@ public:
             loadedScene_ = job.scene;
             buildSeconds = loaded_->buildSeconds;
         }
-        Scene& scene = loaded_->scene;
+        SceneDescription& scene = loaded_->scene;
         if (job.frame) scene.camera = cameraAtFrame(*scene.animation, *job.frame);
         RenderOptions options = renderOptions(args_, "");
         options.progress = false;

@@ -44,7 +44,7 @@ BackendTracer buildTracer(const RenderArgs& args, const std::string& backendName
 
 /// A scene file loaded, with the geometry and tracer its frames are rendered with.
 struct LoadedScene {
-    Scene scene;
+    SceneDescription scene;
     std::shared_ptr<const SceneGeometry> geometry;
     BackendTracer built;
     double buildSeconds = 0;

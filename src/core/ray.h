@@ -1,33 +1,11 @@
 #pragma once
-// A single ray and its closest hit, the currency of every tracer.
+// A single ray and its closest hit, the currency of every tracer (the public wideray/ray.h), and the
+// work a ray took.
 #include <cstdint>
-#include <limits>
+
+#include "wideray/ray.h"
 
 namespace wideray {
-
-constexpr uint32_t kInvalidId = UINT32_MAX;
-
-/// A ray with a parametric interval [tnear, tfar]. Rays with a NaN or infinite component, a zero
-/// direction or tnear > tfar are invalid: every kernel reports them as a miss and not occluded.
-struct Ray {
-    float ox = 0, oy = 0, oz = 0;
-    float dx = 0, dy = 0, dz = 1;
-    float tnear = 0;
-    float tfar = std::numeric_limits<float>::infinity();
-    float time = 0;  ///< within the camera's shutter, in [0, 1]: where moving objects are (motion blur)
-};
-
-/// The closest hit along a ray. geomId 0 is the scene's triangles; user geometries follow.
-/// u and v weight the second and third triangle vertex. Equal t is resolved by the smaller
-/// (geomId, primId), so every kernel finds the same hit whatever its traversal order.
-struct Hit {
-    float t = std::numeric_limits<float>::infinity();
-    float u = 0, v = 0;
-    uint32_t primId = kInvalidId;
-    uint32_t geomId = kInvalidId;
-
-    bool valid() const { return primId != kInvalidId; }
-};
 
 /// Traversal work for one ray: the cost AOV and the kernel statistics.
 struct TraversalCost {

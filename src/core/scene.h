@@ -137,7 +137,7 @@ struct CsgNode {
 struct CsgObject {
     std::vector<CsgNode> nodes;  ///< nodes[0] is the root
     std::vector<AnalyticObject> analytics;
-    std::vector<MeshInstance> meshes;  ///< Scene::meshes placed in world space
+    std::vector<MeshInstance> meshes;  ///< SceneDescription::meshes placed in world space
 };
 
 /// Musgrave's ridged multifractal over [-1, 1]^2 (io/terrain.h): the generated shape "terrain" and
@@ -181,7 +181,7 @@ struct RenderSettings {
     bool polarized = false;       ///< track s and p polarization through Fresnel events
 };
 
-struct Scene {
+struct SceneDescription {
     std::filesystem::path file;  ///< where it was loaded from (for messages)
     Camera camera;
     std::optional<Animation> animation;  ///< a moving camera; none: one still image

@@ -16,7 +16,7 @@ struct GeometryKind {
     const char* name;
     /// The scene's geometry of this kind; null when it has none. `twoLevel` marks the meshes whose
     /// instances are two-level (twoLevelMeshes).
-    std::unique_ptr<Geometry> (*make)(const Scene& scene, const std::vector<bool>& twoLevel);
+    std::unique_ptr<Geometry> (*make)(const SceneDescription& scene, const std::vector<bool>& twoLevel);
 };
 
 std::span<const GeometryKind> geometryKinds();

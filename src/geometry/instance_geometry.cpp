@@ -9,7 +9,7 @@
 
 namespace wideray {
 
-std::vector<bool> twoLevelMeshes(const Scene& scene, Instancing instancing) {
+std::vector<bool> twoLevelMeshes(const SceneDescription& scene, Instancing instancing) {
     std::vector<uint32_t> uses(scene.meshes.size(), 0);
     std::vector<bool> moves(scene.meshes.size(), false);
     for (const MeshInstance& instance : scene.instances) {
@@ -26,7 +26,7 @@ std::vector<bool> twoLevelMeshes(const Scene& scene, Instancing instancing) {
     return twoLevel;
 }
 
-InstanceGeometry::InstanceGeometry(const Scene& scene, const std::vector<bool>& twoLevel) {
+InstanceGeometry::InstanceGeometry(const SceneDescription& scene, const std::vector<bool>& twoLevel) {
     std::vector<uint32_t> meshIndex(scene.meshes.size(), kInvalidId);
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         const MeshInstance& instance = scene.instances[i];

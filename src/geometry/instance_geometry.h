@@ -27,7 +27,7 @@ enum class Instancing { Auto, Flatten, TwoLevel };
 constexpr uint64_t kAutoTwoLevelTriangles = 1 << 16;
 
 /// Per mesh of the scene: whether its instances are two-level.
-std::vector<bool> twoLevelMeshes(const Scene& scene, Instancing instancing);
+std::vector<bool> twoLevelMeshes(const SceneDescription& scene, Instancing instancing);
 
 class InstanceGeometry final : public Geometry {
 public:
@@ -36,13 +36,13 @@ public:
         glm::mat4 transform;     ///< object to world (at time 0 if it moves)
         std::optional<glm::mat4> endTransform;  ///< moving: at time 1
         uint32_t material;       ///< MeshInstance::kMeshMaterials: the mesh's own
-        uint32_t sceneInstance;  ///< index into Scene::instances
+        uint32_t sceneInstance;  ///< index into SceneDescription::instances
         uint32_t firstPrim;
         Bounds3f bounds;         ///< world box
     };
 
     /// The scene's instances of the meshes marked in `twoLevel`.
-    InstanceGeometry(const Scene& scene, const std::vector<bool>& twoLevel);
+    InstanceGeometry(const SceneDescription& scene, const std::vector<bool>& twoLevel);
     ~InstanceGeometry() override;
 
     /// One primitive per instance, bounded by its world box.

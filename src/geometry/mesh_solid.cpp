@@ -13,7 +13,7 @@ namespace {
 constexpr uint32_t kLeafTriangles = 4;
 
 TriangleMesh placedMesh(const std::vector<TriangleMesh>& meshes, const MeshInstance& instance) {
-    Scene placed;
+    SceneDescription placed;
     placed.meshes = {meshes.at(instance.mesh)};
     placed.instances = {{0, instance.transform, instance.material}};
     return flattenTriangles(placed);

@@ -11,7 +11,7 @@ Bounds3f UserGeometry::bounds() const {
     return b;
 }
 
-SceneGeometry::SceneGeometry(const Scene& scene, Instancing instancing) {
+SceneGeometry::SceneGeometry(const SceneDescription& scene, Instancing instancing) {
     const std::vector<bool> twoLevel = twoLevelMeshes(scene, instancing);
     for (const GeometryKind& kind : geometryKinds())
         if (std::unique_ptr<Geometry> g = kind.make(scene, twoLevel)) geometries_.push_back(std::move(g));

@@ -13,7 +13,7 @@ namespace wideray {
 
 class SceneGeometry {
 public:
-    explicit SceneGeometry(const Scene& scene, Instancing instancing = Instancing::Auto);
+    explicit SceneGeometry(const SceneDescription& scene, Instancing instancing = Instancing::Auto);
     /// A scene of one mesh and nothing else (tests, benchmarks).
     explicit SceneGeometry(TriangleMesh mesh);
 

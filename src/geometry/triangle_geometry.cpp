@@ -15,7 +15,7 @@ bool flattened(const std::vector<bool>& twoLevel, const MeshInstance& instance) 
 
 } // namespace
 
-TriangleMesh flattenTriangles(const Scene& scene, const std::vector<bool>& twoLevel) {
+TriangleMesh flattenTriangles(const SceneDescription& scene, const std::vector<bool>& twoLevel) {
     size_t vertexCount = 0, triangleCount = 0;
     bool anyNormals = false, anyUvs = false;
     for (const MeshInstance& instance : scene.instances) {
@@ -70,7 +70,7 @@ TriangleMesh flattenTriangles(const Scene& scene, const std::vector<bool>& twoLe
     return world;
 }
 
-TriangleGeometry::TriangleGeometry(const Scene& scene, const std::vector<bool>& twoLevel)
+TriangleGeometry::TriangleGeometry(const SceneDescription& scene, const std::vector<bool>& twoLevel)
     : world_(flattenTriangles(scene, twoLevel)) {
     uint32_t first = 0;
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
@@ -98,10 +98,10 @@ Bounds3f TriangleGeometry::bounds() const {
     return b;
 }
 
-uint32_t TriangleGeometry::instanceOf(uint32_t primId) const {
-    // The last instance that starts at or before primId (instances of empty meshes share a start).
+size_t TriangleGeometry::slotOf(uint32_t primId) const {
+    // Instances of empty meshes share a start; the last of them owns the triangles that follow.
     auto it = std::upper_bound(instanceFirst_.begin(), instanceFirst_.end(), primId);
-    return instanceIds_[size_t(it - instanceFirst_.begin()) - 1];
+    return size_t(it - instanceFirst_.begin()) - 1;
 }
 
 SurfacePoint TriangleGeometry::surface(const Ray&, const Hit& hit) const {

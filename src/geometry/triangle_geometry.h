@@ -13,7 +13,7 @@ namespace wideray {
 class TriangleGeometry final : public Geometry {
 public:
     /// The scene's instances of the meshes not marked in `twoLevel` (empty: all), flattened.
-    explicit TriangleGeometry(const Scene& scene, const std::vector<bool>& twoLevel = {});
+    explicit TriangleGeometry(const SceneDescription& scene, const std::vector<bool>& twoLevel = {});
     /// One mesh placed once, as it is.
     explicit TriangleGeometry(TriangleMesh mesh);
 
@@ -25,9 +25,14 @@ public:
     const TriangleMesh* triangles() const override { return &world_; }
 
     /// The scene instance a triangle belongs to.
-    uint32_t instanceOf(uint32_t primId) const;
+    uint32_t instanceOf(uint32_t primId) const { return instanceIds_[slotOf(primId)]; }
+    /// The primId of the first triangle of that instance.
+    uint32_t instanceFirstPrim(uint32_t primId) const { return instanceFirst_[slotOf(primId)]; }
 
 private:
+    /// The last instance flattened that starts at or before primId.
+    size_t slotOf(uint32_t primId) const;
+
     TriangleMesh world_;
     std::vector<uint32_t> instanceFirst_;  ///< the first primId of each instance flattened
     std::vector<uint32_t> instanceIds_;    ///< the scene instance of each
@@ -35,6 +40,6 @@ private:
 
 /// The instanced triangles in world space, in one mesh (of the meshes not marked in `twoLevel`;
 /// empty: all); faceMaterial indexes scene.materials.
-TriangleMesh flattenTriangles(const Scene& scene, const std::vector<bool>& twoLevel = {});
+TriangleMesh flattenTriangles(const SceneDescription& scene, const std::vector<bool>& twoLevel = {});
 
 } // namespace wideray

@@ -6,8 +6,8 @@
 
 namespace wideray {
 
-Scene sceneFromMesh(TriangleMesh mesh, int width, int height) {
-    Scene scene;
+SceneDescription sceneFromMesh(TriangleMesh mesh, int width, int height) {
+    SceneDescription scene;
     scene.materials.push_back({"default", MaterialType::Diffuse, glm::vec3(0.8f)});
     mesh.faceMaterial.assign(mesh.triangles.size(), 0);
     mesh.materials.clear();
@@ -31,8 +31,8 @@ Scene sceneFromMesh(TriangleMesh mesh, int width, int height) {
     return scene;
 }
 
-Scene sceneFromMesh(const std::filesystem::path& meshFile, int width, int height) {
-    Scene scene = sceneFromMesh(loadMesh(meshFile), width, height);
+SceneDescription sceneFromMesh(const std::filesystem::path& meshFile, int width, int height) {
+    SceneDescription scene = sceneFromMesh(loadMesh(meshFile), width, height);
     scene.file = meshFile;
     return scene;
 }
@@ -43,7 +43,7 @@ bool isSceneFile(const std::filesystem::path& file) {
     return ext == ".json";
 }
 
-Scene loadSceneOrMesh(const std::filesystem::path& file, int meshWidth, int meshHeight) {
+SceneDescription loadSceneOrMesh(const std::filesystem::path& file, int meshWidth, int meshHeight) {
     if (isSceneFile(file)) return loadScene(file);
     return sceneFromMesh(file, meshWidth, meshHeight);
 }

@@ -9,14 +9,14 @@
 
 namespace wideray {
 
-Scene sceneFromMesh(const std::filesystem::path& meshFile, int width, int height);
+SceneDescription sceneFromMesh(const std::filesystem::path& meshFile, int width, int height);
 /// The same rule for a mesh in memory (a generated one, say).
-Scene sceneFromMesh(TriangleMesh mesh, int width, int height);
+SceneDescription sceneFromMesh(TriangleMesh mesh, int width, int height);
 
 /// Whether `file` is a scene file (.json, in any case) rather than a mesh.
 bool isSceneFile(const std::filesystem::path& file);
 
 /// A scene file (.json) as it is, or a bare mesh framed by the rule above.
-Scene loadSceneOrMesh(const std::filesystem::path& file, int meshWidth = 1024, int meshHeight = 1024);
+SceneDescription loadSceneOrMesh(const std::filesystem::path& file, int meshWidth = 1024, int meshHeight = 1024);
 
 } // namespace wideray

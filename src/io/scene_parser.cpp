@@ -1,4 +1,4 @@
-// JSON -> Scene with every value checked (docs/scene-format.md).
+// JSON -> SceneDescription with every value checked (docs/scene-format.md).
 #include "io/scene_parser.h"
 #include "io/terrain.h"
 
@@ -34,7 +34,7 @@ public:
         scene_.file = file;
     }
 
-    Scene read(const Json& json) {
+    SceneDescription read(const Json& json) {
         const Node root{json, ""};
         checkKeys(root, {"camera", "animation", "image", "background", "fog", "render", "materials", "lights", "meshes",
                          "objects"});
@@ -1023,7 +1023,7 @@ private:
     }
 
     std::filesystem::path folder_;
-    Scene scene_;
+    SceneDescription scene_;
     std::unordered_map<std::string, uint32_t> materialIndex_;
     std::map<std::string, uint32_t> meshNamed_;
     std::map<std::filesystem::path, uint32_t> meshOfFile_;
@@ -1035,7 +1035,7 @@ private:
 
 } // namespace
 
-Scene parseScene(const std::string& jsonText, const std::filesystem::path& file) {
+SceneDescription parseScene(const std::string& jsonText, const std::filesystem::path& file) {
     const Json json = parseJson(jsonText, file.string());
     return SceneReader(file).read(json);
 }
@@ -1052,7 +1052,7 @@ std::string readSceneText(const std::filesystem::path& file) {
 
 } // namespace
 
-Scene loadScene(const std::filesystem::path& file) { return parseScene(readSceneText(file), file); }
+SceneDescription loadScene(const std::filesystem::path& file) { return parseScene(readSceneText(file), file); }
 
 std::optional<FrameRange> loadSceneFrames(const std::filesystem::path& file) {
     return SceneReader(file).readFrames(parseJson(readSceneText(file), file.string()));

@@ -9,7 +9,7 @@
 namespace wideray {
 
 /// Reads and parses a scene file. Throws InputError for anything wrong with it or the meshes it uses.
-Scene loadScene(const std::filesystem::path& file);
+SceneDescription loadScene(const std::filesystem::path& file);
 
 /// The last frame number an animation may have (frames are 0..kLastFrame).
 inline constexpr int kLastFrame = 999999;
@@ -25,10 +25,10 @@ std::optional<FrameRange> loadSceneFrames(const std::filesystem::path& file);
 /// Parses scene JSON. `file` names the scene in error messages, and relative mesh paths are
 /// resolved against its folder. Throws InputError naming "line L, column C" for JSON syntax errors
 /// and the key path (such as "objects[2].transform.scale") for everything else.
-Scene parseScene(const std::string& jsonText, const std::filesystem::path& file);
+SceneDescription parseScene(const std::string& jsonText, const std::filesystem::path& file);
 
 /// Writes a scene as JSON that parseScene reads back into an equal scene. Meshes are written inline
 /// (as "meshes" entries with their vertices and triangles), so the result needs no mesh files.
-std::string writeScene(const Scene& scene);
+std::string writeScene(const SceneDescription& scene);
 
 } // namespace wideray

@@ -1,4 +1,4 @@
-// Scene -> JSON, which parseScene reads back into an equal scene.
+// SceneDescription -> JSON, which parseScene reads back into an equal scene.
 #include <set>
 #include <stdexcept>
 
@@ -136,7 +136,7 @@ Json cameraJson(const Camera& camera) {
 
 } // namespace
 
-std::string writeScene(const Scene& scene) {
+std::string writeScene(const SceneDescription& scene) {
     std::set<std::string> names;
     for (const Material& m : scene.materials)
         if (m.name.empty() || !names.insert(m.name).second)

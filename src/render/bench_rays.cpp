@@ -26,8 +26,8 @@ constexpr int kFirstBounce = 2, kLastBounce = 4;
 
 /// The rays of bounces kFirstBounce..kLastBounce of the path tracer at one sample per pixel, tile
 /// after tile in the renderer's order.
-std::vector<Ray> bounceRays(const Scene& scene, const Tracer& tracer, int width, int height) {
-    Scene pathTraced = scene;
+std::vector<Ray> bounceRays(const SceneDescription& scene, const Tracer& tracer, int width, int height) {
+    SceneDescription pathTraced = scene;
     pathTraced.render.integrator = Integrator::Path;
     RenderOptions options;
     options.width = width;
@@ -74,7 +74,7 @@ const char* rayKindName(RayKind kind) {
     return "?";
 }
 
-std::vector<Ray> primaryRays(const Scene& scene, int width, int height) {
+std::vector<Ray> primaryRays(const SceneDescription& scene, int width, int height) {
     CameraModel camera(scene.camera, width, height);
     std::vector<Ray> rays;
     rays.reserve(size_t(width) * height);
@@ -84,7 +84,7 @@ std::vector<Ray> primaryRays(const Scene& scene, int width, int height) {
     return rays;
 }
 
-BenchRays makeBenchRays(const Scene& scene, const Tracer& reference, int width, int height) {
+BenchRays makeBenchRays(const SceneDescription& scene, const Tracer& reference, int width, int height) {
     BenchRays out;
     const Bounds3f bounds = reference.geometry().bounds();
     out.sceneRadius = bounds.empty() ? 1.0f : 0.5f * glm::length(bounds.extent());

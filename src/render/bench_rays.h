@@ -46,10 +46,10 @@ struct BenchRays {
 };
 
 /// Primary hits come from `reference`, whose hits define the secondary rays and whose paths the bounce rays follow.
-BenchRays makeBenchRays(const Scene& scene, const Tracer& reference, int width, int height);
+BenchRays makeBenchRays(const SceneDescription& scene, const Tracer& reference, int width, int height);
 
 /// Camera rays of a width x height image in the renderer's order (tiles in Hilbert order, pixels in
 /// Morton order inside a tile), through pixel centers.
-std::vector<Ray> primaryRays(const Scene& scene, int width, int height);
+std::vector<Ray> primaryRays(const SceneDescription& scene, int width, int height);
 
 } // namespace wideray

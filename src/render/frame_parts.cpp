@@ -12,7 +12,7 @@ std::span<const TileRect> partTiles(std::span<const TileRect> tiles, uint32_t pa
     return tiles.subspan(begin, end - begin);
 }
 
-FramePart renderPart(const Scene& scene, const Tracer& tracer, const RenderOptions& options, const WorkItem& item) {
+FramePart renderPart(const SceneDescription& scene, const Tracer& tracer, const RenderOptions& options, const WorkItem& item) {
     const RenderOptions resolved = resolveRenderOptions(scene, options);
     const TileOrder order(resolved.width, resolved.height, resolved.tileSize);
     const std::span<const TileRect> tiles = partTiles(order.tiles(), item.part, item.parts);

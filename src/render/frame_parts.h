@@ -40,7 +40,7 @@ struct FramePart {
 
 /// Renders part `item` of the frame `scene` describes (its camera), through `tracer`; `options`
 /// as for render(). The report fields (triangles, names, build time) are left to the caller.
-FramePart renderPart(const Scene& scene, const Tracer& tracer, const RenderOptions& options, const WorkItem& item);
+FramePart renderPart(const SceneDescription& scene, const Tracer& tracer, const RenderOptions& options, const WorkItem& item);
 
 /// Joins the parts of one frame as they arrive, in any order.
 class FrameAssembler {

@@ -10,7 +10,7 @@
 
 namespace wideray {
 
-RenderOptions resolveRenderOptions(const Scene& scene, const RenderOptions& options) {
+RenderOptions resolveRenderOptions(const SceneDescription& scene, const RenderOptions& options) {
     RenderOptions resolved = options;
     resolved.width = options.width > 0 ? options.width : scene.image.width;
     resolved.height = options.height > 0 ? options.height : scene.image.height;
@@ -19,7 +19,7 @@ RenderOptions resolveRenderOptions(const Scene& scene, const RenderOptions& opti
     return resolved;
 }
 
-double renderTiles(const Scene& scene, const Tracer& tracer, const RenderOptions& options, const TileOrder& order,
+double renderTiles(const SceneDescription& scene, const Tracer& tracer, const RenderOptions& options, const TileOrder& order,
                    std::span<const TileRect> tiles, Film& film) {
     const TileRenderer renderer(scene, tracer, options, order, film);
     tbb::enumerable_thread_specific<TileBuffers> buffers;
@@ -37,7 +37,7 @@ double renderTiles(const Scene& scene, const Tracer& tracer, const RenderOptions
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-Image render(const Scene& scene, const Tracer& tracer, const RenderOptions& options, RenderStats& stats) {
+Image render(const SceneDescription& scene, const Tracer& tracer, const RenderOptions& options, RenderStats& stats) {
     const RenderOptions resolved = resolveRenderOptions(scene, options);
     const TileOrder order(resolved.width, resolved.height, resolved.tileSize);
     Film film(resolved.width, resolved.height, resolved.aov, resolved.samplesPerPixel);

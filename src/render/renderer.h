@@ -15,16 +15,16 @@ namespace wideray {
 
 /// `options` with what it leaves at 0 taken from the scene: image size and samples per pixel, and
 /// the tile size chosen (renderTileSize).
-RenderOptions resolveRenderOptions(const Scene& scene, const RenderOptions& options);
+RenderOptions resolveRenderOptions(const SceneDescription& scene, const RenderOptions& options);
 
 /// Renders `tiles` (a subset of `order`'s) into `film` on oneTBB's threads; `options` resolved.
 /// Returns the seconds it took.
-double renderTiles(const Scene& scene, const Tracer& tracer, const RenderOptions& options, const TileOrder& order,
+double renderTiles(const SceneDescription& scene, const Tracer& tracer, const RenderOptions& options, const TileOrder& order,
                    std::span<const TileRect> tiles, Film& film);
 
 /// Renders `scene` through `tracer`, whose geometry is the scene's. The color AOV is linear RGB;
 /// normal is n * 0.5 + 0.5; depth is the first hit's t (0 on a miss); cost is a heatmap of nodes +
 /// primitives visited by the primary rays, scaled to the image maximum.
-Image render(const Scene& scene, const Tracer& tracer, const RenderOptions& options, RenderStats& stats);
+Image render(const SceneDescription& scene, const Tracer& tracer, const RenderOptions& options, RenderStats& stats);
 
 } // namespace wideray

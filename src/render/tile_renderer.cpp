@@ -15,7 +15,7 @@ uint32_t directionOctant(const Ray& r) {
 }
 
 /// The box around the scene's objects and its lights' positions.
-Bounds3f boundsWithLights(const Bounds3f& objects, const Scene& scene) {
+Bounds3f boundsWithLights(const Bounds3f& objects, const SceneDescription& scene) {
     Bounds3f b = objects;
     for (const Light& light : scene.lights) {
         if (light.type == LightType::Directional) continue;
@@ -39,14 +39,14 @@ glm::vec3 mediumTransmittance(const Material& material, float distance) {
 
 } // namespace
 
-int renderTileSize(const Scene& scene, int samplesPerPixel) {
+int renderTileSize(const SceneDescription& scene, int samplesPerPixel) {
     if (scene.render.integrator != Integrator::Path) return 16;
     int size = 16;
     while (size < 64 && size * size * samplesPerPixel < 4096) size *= 2;
     return size;
 }
 
-TileRenderer::TileRenderer(const Scene& scene, const Tracer& tracer, const RenderOptions& options,
+TileRenderer::TileRenderer(const SceneDescription& scene, const Tracer& tracer, const RenderOptions& options,
                            const TileOrder& order, Film& film)
     : scene_(scene), tracer_(tracer), geometry_(tracer.geometry()), options_(options), order_(order), film_(film),
       camera_(scene.camera, options.width, options.height), objects_(geometry_.bounds()),

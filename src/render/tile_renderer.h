@@ -49,12 +49,12 @@ struct TileBuffers {
 
 /// The tile size `render` uses: 16 for the Whitted integrator; for the path tracer, large enough
 /// that a tile's paths (pixels x samples) make a stream of at least 4096 rays, up to 64.
-int renderTileSize(const Scene& scene, int samplesPerPixel);
+int renderTileSize(const SceneDescription& scene, int samplesPerPixel);
 
 class TileRenderer {
 public:
     /// `options` has the image size and samples per pixel resolved (none is 0).
-    TileRenderer(const Scene& scene, const Tracer& tracer, const RenderOptions& options, const TileOrder& order,
+    TileRenderer(const SceneDescription& scene, const Tracer& tracer, const RenderOptions& options, const TileOrder& order,
                  Film& film);
 
     /// Renders one tile into the film; threads render different tiles at once, each with its buffers.
@@ -71,7 +71,7 @@ private:
     void sortByMaterial(TileBuffers& buf) const;
     void traceShadows(TileBuffers& buf, int depth) const;
 
-    const Scene& scene_;
+    const SceneDescription& scene_;
     const Tracer& tracer_;
     const SceneGeometry& geometry_;
     RenderOptions options_;

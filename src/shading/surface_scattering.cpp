@@ -87,13 +87,13 @@ void scatterDielectric(const ShadingContext& context, const PathState& path, con
                    rng, out);
 }
 
-float indexOfRefraction(const Scene& scene, const MediumStack& media) {
+float indexOfRefraction(const SceneDescription& scene, const MediumStack& media) {
     return media.empty() ? 1.0f : scene.materials[media.innermost()].ior;
 }
 
 } // namespace
 
-DielectricCrossing crossDielectric(const Scene& scene, const MediumStack& media, const SurfacePoint& sp,
+DielectricCrossing crossDielectric(const SceneDescription& scene, const MediumStack& media, const SurfacePoint& sp,
                                    const glm::vec3& direction, const glm::vec3& normal) {
     const Material& material = scene.materials[sp.material];
     const bool entering = glm::dot(direction, sp.geometricNormal) < 0.0f;

@@ -27,7 +27,7 @@ namespace wideray {
 
 /// The scene-wide inputs of shading.
 struct ShadingContext {
-    const Scene& scene;
+    const SceneDescription& scene;
     const FogMedium& fog;
     float epsilon;  ///< offset of new rays from the surface
 };
@@ -50,7 +50,7 @@ struct DielectricCrossing {
 
 /// The crossing for a path inside `media` arriving along `direction` at `sp`, with `normal` the
 /// shading normal turned against `direction`.
-DielectricCrossing crossDielectric(const Scene& scene, const MediumStack& media, const SurfacePoint& sp,
+DielectricCrossing crossDielectric(const SceneDescription& scene, const MediumStack& media, const SurfacePoint& sp,
                                    const glm::vec3& direction, const glm::vec3& normal);
 
 /// The s and p reflectances of a conductor at cos(theta) = `cosine`, per channel.
