@@ -35,7 +35,7 @@ test: build
 ## The test suite built with AddressSanitizer and UndefinedBehaviorSanitizer.
 sanitize: deps
 	cmake -S . -B $(ASAN_BUILD) $(GENERATOR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DWIDERAY_SANITIZE=ON -DWIDERAY_BENCHMARKS=OFF
-	cmake --build $(ASAN_BUILD) -j $(JOBS) --target wideray_tests wideray image_equal
+	cmake --build $(ASAN_BUILD) -j $(JOBS) --target wideray_tests wideray_api_tests wideray image_equal
 	ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp UBSAN_OPTIONS=print_stacktrace=1 ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
 
 ## Every libFuzzer harness (fuzz/) for FUZZ_SECONDS each (or runs:N inputs from a fixed seed), built with clang, ASan and UBSan; crashes

@@ -198,14 +198,13 @@ std::vector<Candidate> embreeCandidates(const EmbreeStructure& embree, const std
     return out;
 }
 
-bool isSceneFile(const std::string& path) { return std::filesystem::path(path).extension() == ".json"; }
-
 std::string shortName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
 void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& results, nlohmann::json& builds,
               int threads) {
     auto [width, height] = parseSize(args.size);
     SceneDescription scene = loadSceneOrMesh(input, width, height);
+    for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
     // One geometry for every structure, so that all trace the same primitives.
     auto geometry = std::make_shared<const SceneGeometry>(scene, instancingFor(args.instancing, args.accels));
     const std::string name = shortName(input);

@@ -37,6 +37,7 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
         for (const std::string& file : *files) {
             try {
                 SceneDescription scene = loadSceneOrMesh(file);
+                for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
                 const std::vector<std::string> accels = accel->empty() ? std::vector<std::string>{"bvh4", "bvh8"} : *accel;
                 auto geometry = std::make_shared<const SceneGeometry>(scene, instancingFor(*instancing, accels));
                 size_t dropped = 0;

@@ -32,8 +32,7 @@ std::vector<FrameJob> frameJobs(const RenderArgs& args) {
     for (size_t s = 0; s < args.scenes.size(); ++s) {
         const std::string& file = args.scenes[s];
         try {
-            const std::optional<FrameRange> range =
-                isSceneFile(file) ? loadSceneFrames(file) : std::nullopt;
+            const std::optional<FrameRange> range = sceneFileFrames(file);
             for (std::optional<int> frame : framesToRender(args, file, range)) jobs.push_back({s, frame, {}});
         } catch (const std::exception& e) {
             jobs.push_back({s, std::nullopt, e.what()});

@@ -30,6 +30,7 @@ LoadedScene loadForRender(const RenderArgs& args, const std::string& file) {
     using Clock = std::chrono::steady_clock;
     LoadedScene loaded;
     loaded.scene = loadSceneOrMesh(file, 1024, 1024);
+    for (const std::string& warning : loaded.scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
     for (const auto& [name, integrator] : kIntegrators)
         if (name == args.integrator) loaded.scene.render.integrator = integrator;
     const auto start = Clock::now();

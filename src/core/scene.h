@@ -197,6 +197,8 @@ struct SceneDescription {
     std::vector<AnalyticObject> analytics;
     std::vector<HeightField> heightFields;
     std::vector<CsgObject> csgs;
+    /// What the loader approximated or left out (pbrt import), "FILE:LINE: what", one line each.
+    std::vector<std::string> warnings;
 };
 
 } // namespace wideray

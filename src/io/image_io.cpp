@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "core/error.h"
+#include "io/file_extension.h"
 #include "io/image_io.h"
 
 namespace wideray {
@@ -20,15 +21,13 @@ float srgbToLinear(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 
 } // namespace
 
 bool isFloatFormat(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = char(std::tolower(c));
+    const std::string ext = lowercaseExtension(path);
     return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
 }
 
 void writeImage(const Image& image, const std::filesystem::path& path, bool srgb) {
     const std::string file = path.string();
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = char(std::tolower(c));
+    const std::string ext = lowercaseExtension(path);
     std::filesystem::path dir = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);

@@ -1,7 +1,9 @@
 #include "io/mesh_framing.h"
 
 #include "core/bounds.h"
+#include "io/file_extension.h"
 #include "io/mesh_io.h"
+#include "io/pbrt_parser.h"
 #include "io/scene_parser.h"
 
 namespace wideray {
@@ -38,12 +40,16 @@ SceneDescription sceneFromMesh(const std::filesystem::path& meshFile, int width,
 }
 
 bool isSceneFile(const std::filesystem::path& file) {
-    std::string ext = file.extension().string();
-    for (char& ch : ext) ch = char(std::tolower(ch));
-    return ext == ".json";
+    const std::string ext = lowercaseExtension(file);
+    return ext == ".json" || ext == ".pbrt";
+}
+
+std::optional<FrameRange> sceneFileFrames(const std::filesystem::path& file) {
+    return lowercaseExtension(file) == ".json" ? loadSceneFrames(file) : std::nullopt;
 }
 
 SceneDescription loadSceneOrMesh(const std::filesystem::path& file, int meshWidth, int meshHeight) {
+    if (lowercaseExtension(file) == ".pbrt") return loadPbrt(file);
     if (isSceneFile(file)) return loadScene(file);
     return sceneFromMesh(file, meshWidth, meshHeight);
 }

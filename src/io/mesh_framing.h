@@ -4,8 +4,10 @@
 // eye = c + normalize(0.3, 0.25, 1.0) * 1.2 R; look at c; up (0, 1, 0); vertical field of view 50
 // degrees; a point light at c + (0.5 R, 2 R, 0.7 R); one grey diffuse material.
 #include <filesystem>
+#include <optional>
 
 #include "core/scene.h"
+#include "io/scene_parser.h"
 
 namespace wideray {
 
@@ -13,10 +15,14 @@ SceneDescription sceneFromMesh(const std::filesystem::path& meshFile, int width,
 /// The same rule for a mesh in memory (a generated one, say).
 SceneDescription sceneFromMesh(TriangleMesh mesh, int width, int height);
 
-/// Whether `file` is a scene file (.json, in any case) rather than a mesh.
+/// Whether `file` is a scene file (.json or .pbrt, in any case) rather than a mesh.
 bool isSceneFile(const std::filesystem::path& file);
 
-/// A scene file (.json) as it is, or a bare mesh framed by the rule above.
+/// The frames of a scene file's animation without loading its meshes (JSON scenes; pbrt scenes and
+/// meshes have none).
+std::optional<FrameRange> sceneFileFrames(const std::filesystem::path& file);
+
+/// A scene file (.json, .pbrt) as it is, or a bare mesh framed by the rule above.
 SceneDescription loadSceneOrMesh(const std::filesystem::path& file, int meshWidth = 1024, int meshHeight = 1024);
 
 } // namespace wideray

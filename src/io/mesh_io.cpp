@@ -8,12 +8,12 @@
 #include <map>
 
 #include "core/error.h"
+#include "io/file_extension.h"
 
 namespace wideray {
 
 TriangleMesh loadMesh(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    const std::string ext = lowercaseExtension(path);
     if (ext == ".obj") return loadObj(path);
     if (ext == ".ply") return loadPly(path);
     if (ext == ".gltf" || ext == ".glb") return loadGltf(path);
