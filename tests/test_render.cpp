@@ -4,9 +4,11 @@
 
 #include <tbb/global_control.h>
 
+#include "core/error.h"
 #include "core/fp_mode.h"
 #include "io/image_io.h"
 #include "io/mesh_framing.h"
+#include "render/render_memory.h"
 #include "render/renderer.h"
 #include "io/scene_parser.h"
 #include "backends/wideray_structure.h"
@@ -125,6 +127,25 @@ TEST(Render, HighQualityBuildRendersTheSameImage) {
     };
     const Image fast = renderWith("fast"), high = renderWith("high");
     EXPECT_TRUE(fast.pixels == high.pixels);
+}
+
+TEST(RenderMemory, OversizeImagesAreRefusedWithTheEstimate) {
+    constexpr uint64_t kGiB = uint64_t(1) << 30;
+    RenderOptions huge;
+    huge.width = huge.height = 65536;
+    try {
+        checkRenderFits(huge, "big.json", 24 * kGiB);
+        ADD_FAILURE() << "a 65536x65536 image passed on a 24 GiB machine";
+    } catch (const InputError& e) {
+        EXPECT_STREQ(e.what(), "big.json: 65536x65536 needs 96.0 GiB for its film and image; this machine has 24.0 GiB");
+    }
+    RenderOptions hd;
+    hd.width = 1920, hd.height = 1080;
+    EXPECT_NO_THROW(checkRenderFits(hd, "hd.json", 24 * kGiB));
+    EXPECT_EQ(renderBytes(hd), uint64_t(2) * 1920 * 1080 * 3 * 4);
+    hd.aov = Aov::Cost;
+    EXPECT_EQ(renderBytes(hd), uint64_t(2) * 1920 * 1080 * 4 * 4);
+    EXPECT_GT(physicalMemoryBytes(), kGiB / 4);
 }
 
 } // namespace

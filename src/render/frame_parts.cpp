@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "render/render_memory.h"
 #include "render/renderer.h"
 
 namespace wideray {
@@ -14,6 +15,7 @@ std::span<const TileRect> partTiles(std::span<const TileRect> tiles, uint32_t pa
 
 FramePart renderPart(const SceneDescription& scene, const Tracer& tracer, const RenderOptions& options, const WorkItem& item) {
     const RenderOptions resolved = resolveRenderOptions(scene, options);
+    checkRenderFits(resolved, options.label.empty() ? scene.file.string() : options.label);
     const TileOrder order(resolved.width, resolved.height, resolved.tileSize);
     const std::span<const TileRect> tiles = partTiles(order.tiles(), item.part, item.parts);
     Film film(resolved.width, resolved.height, resolved.aov, resolved.samplesPerPixel);

@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "render/progress.h"
+#include "render/render_memory.h"
 #include "render/tile_renderer.h"
 
 namespace wideray {
@@ -39,6 +40,7 @@ double renderTiles(const SceneDescription& scene, const Tracer& tracer, const Re
 
 Image render(const SceneDescription& scene, const Tracer& tracer, const RenderOptions& options, RenderStats& stats) {
     const RenderOptions resolved = resolveRenderOptions(scene, options);
+    checkRenderFits(resolved, options.label.empty() ? scene.file.string() : options.label);
     const TileOrder order(resolved.width, resolved.height, resolved.tileSize);
     Film film(resolved.width, resolved.height, resolved.aov, resolved.samplesPerPixel);
     stats.seconds = renderTiles(scene, tracer, resolved, order, order.tiles(), film);
