@@ -10,7 +10,10 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "io/image_io.h"
+#include "io/mesh_framing.h"
 #include "io/mesh_io.h"
+#include "render_helpers.h"
 #include "test_data.h"
 
 namespace wideray {
@@ -545,6 +548,97 @@ TEST(SharedScenes, TeapotObj) {
     SKIP_WITHOUT_SHARED_SCENES();
     const TriangleMesh mesh = loadSharedScene("teapot/teapot.obj");
     EXPECT_EQ(mesh.triangleCount() + mesh.droppedDegenerate, 6320u);
+}
+
+// ---- bare meshes shown as their authors meant (io/mesh_framing.h, showcaseMesh) -----------------
+
+/// The mean color of the pixels that show the model (not the background).
+glm::vec3 modelColor(const SceneDescription& scene) {
+    RenderOptions options;
+    const Image image = renderWithReference(scene, 1, options);
+    glm::dvec3 sum(0.0);
+    size_t n = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const glm::vec3 c(image.at(x, y)[0], image.at(x, y)[1], image.at(x, y)[2]);
+            if (glm::length(c - scene.background) < 1e-4f) continue;
+            sum += glm::dvec3(c);
+            ++n;
+        }
+    EXPECT_GT(n, size_t(image.width * image.height / 20)) << "the model covers little of the image";
+    return n ? glm::vec3(sum / double(n)) : glm::vec3(0.0f);
+}
+
+/// Every vertex of the mesh lies inside the camera's frustum.
+void expectWholeMeshInView(const SceneDescription& scene) {
+    const Camera& camera = scene.camera;
+    const glm::vec3 forward = glm::normalize(camera.lookAt - camera.position);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up)), up = glm::cross(right, forward);
+    const float tanY = std::tan(glm::radians(camera.fovY) * 0.5f);
+    const float tanX = tanY * float(scene.image.width) / float(scene.image.height);
+    for (const glm::vec3& v : scene.meshes[0].positions) {
+        const glm::vec3 d = v - camera.position;
+        const float z = glm::dot(d, forward);
+        ASSERT_GT(z, 0.0f);
+        ASSERT_LE(std::abs(glm::dot(d, right)), z * tanX) << scene.image.width << "x" << scene.image.height;
+        ASSERT_LE(std::abs(glm::dot(d, up)), z * tanY) << scene.image.width << "x" << scene.image.height;
+    }
+}
+
+TEST_F(MeshIoTest, ShowcaseFramesTheWholeMesh) {
+    // A long thin box, in images wide and tall: the narrower side decides.
+    TriangleMesh rod;
+    for (int i = 0; i < 8; ++i) rod.positions.emplace_back(i & 1 ? 10.0f : -10.0f, i & 2 ? 1.0f : -1.0f, i & 4 ? 0.5f : -0.5f);
+    rod.triangles = {{0, 1, 3}, {0, 3, 2}, {4, 6, 7}, {4, 7, 5}, {0, 4, 5}, {0, 5, 1}, {2, 3, 7}, {2, 7, 6}};
+    for (auto [w, h] : {std::pair{200, 100}, {100, 200}, {64, 64}}) expectWholeMeshInView(showcaseMesh(rod, "rod.obj", w, h));
+    if (const auto shared = sharedScenesDir()) {
+        const SceneDescription bunny = loadSceneOrMesh(*shared / "stanford-bunny/bun_zipper.ply", 160, 90, MeshFraming::Showcase);
+        expectWholeMeshInView(bunny);
+        EXPECT_EQ(bunny.lights.size(), 2u);  // the key light and the fill light at the camera
+    }
+}
+
+/// A cube of side 2 about the origin with texture coordinates on each face, in OBJ, using `material`.
+std::string cubeObj(const std::string& mtllib, const std::string& material) {
+    std::string obj = mtllib.empty() ? "" : "mtllib " + mtllib + "\n";
+    for (int i = 0; i < 8; ++i)
+        obj += std::string("v ") + (i & 1 ? "1" : "-1") + (i & 2 ? " 1" : " -1") + (i & 4 ? " 1" : " -1") + "\n";
+    obj += "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
+    if (!material.empty()) obj += "usemtl " + material + "\n";
+    for (const char* face : {"1/1 3/2 4/3 2/4", "5/1 6/2 8/3 7/4", "1/1 2/2 6/3 5/4", "3/1 7/2 8/3 4/4", "1/1 5/2 7/3 3/4", "2/1 4/2 8/3 6/4"})
+        obj += std::string("f ") + face + "\n";
+    return obj;
+}
+
+TEST_F(MeshIoTest, ShowcaseKeepsTheFilesMaterials) {
+    // MTL Kd: a red cube.
+    write("red.mtl", "newmtl red\nKd 0.9 0.05 0.05\n");
+    const glm::vec3 red = modelColor(loadSceneOrMesh(write("red.obj", cubeObj("red.mtl", "red")), 48, 48, MeshFraming::Showcase));
+    EXPECT_GT(red.r, 4 * red.g);
+    EXPECT_GT(red.r, 4 * red.b);
+    // Without materials: grey, and lit everywhere (no black faces).
+    const glm::vec3 grey = modelColor(loadSceneOrMesh(write("plain.obj", cubeObj("", "")), 48, 48, MeshFraming::Showcase));
+    EXPECT_NEAR(grey.r, grey.b, 1e-3f);
+    EXPECT_GT(grey.r, 0.05f);
+    // MTL map_Kd: a blue image over the cube's faces.
+    Image blue(2, 2, 3);
+    for (size_t i = 0; i < blue.pixels.size(); i += 3) blue.pixels[i + 2] = 1.0f;
+    writeImage(blue, dir_ / "blue.png", true);
+    write("textured.mtl", "newmtl painted\nKd 0.8 0.8 0.8\nmap_Kd blue.png\n");
+    const glm::vec3 painted = modelColor(loadSceneOrMesh(write("textured.obj", cubeObj("textured.mtl", "painted")), 48, 48, MeshFraming::Showcase));
+    EXPECT_GT(painted.b, 4 * painted.r);
+    // A missing image is reported, and the Kd color is used.
+    write("missing.mtl", "newmtl gone\nKd 0.1 0.8 0.1\nmap_Kd nowhere.png\n");
+    const SceneDescription missing = loadSceneOrMesh(write("missing.obj", cubeObj("missing.mtl", "gone")), 48, 48, MeshFraming::Showcase);
+    ASSERT_EQ(missing.warnings.size(), 1u);
+    EXPECT_NE(missing.warnings[0].find("nowhere.png"), std::string::npos) << missing.warnings[0];
+    const glm::vec3 green = modelColor(missing);
+    EXPECT_GT(green.g, 4 * green.r);
+    // glTF baseColorFactor.
+    const glm::vec3 gltf = modelColor(loadSceneOrMesh(
+        write("tri.gltf", triangleGltf(R"(, "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.05, 0.1, 0.9, 1]}}])")), 48,
+        48, MeshFraming::Showcase));
+    EXPECT_GT(gltf.b, 4 * gltf.r);
 }
 
 } // namespace

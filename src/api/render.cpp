@@ -23,7 +23,8 @@ RenderedImage renderSceneFile(const std::string& path, const RenderRequest& requ
     if ((request.width == 0) != (request.height == 0))
         throw Error("renderSceneFile: give both width and height, or neither (the scene's size)");
     try {
-        SceneDescription scene = loadSceneOrMesh(path, 1024, 1024);
+        SceneDescription scene = loadSceneOrMesh(path, request.width > 0 ? request.width : 1024,
+                                                 request.height > 0 ? request.height : 1024, MeshFraming::Showcase);
         if (!request.integrator.empty()) {
             bool known = false;
             for (const auto& [name, integrator] : kIntegrators)

@@ -29,7 +29,9 @@ BackendTracer buildTracer(const RenderArgs& args, const std::string& backendName
 LoadedScene loadForRender(const RenderArgs& args, const std::string& file) {
     using Clock = std::chrono::steady_clock;
     LoadedScene loaded;
-    loaded.scene = loadSceneOrMesh(file, 1024, 1024);
+    // A bare mesh is framed for the image size asked for.
+    const auto [width, height] = args.size.empty() ? std::pair{1024, 1024} : parseSize(args.size);
+    loaded.scene = loadSceneOrMesh(file, width, height, MeshFraming::Showcase);
     for (const std::string& warning : loaded.scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
     for (const auto& [name, integrator] : kIntegrators)
         if (name == args.integrator) loaded.scene.render.integrator = integrator;

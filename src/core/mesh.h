@@ -12,6 +12,7 @@ namespace wideray {
 struct MeshMaterial {
     std::string name;
     glm::vec3 diffuse{0.8f};
+    std::string diffuseTexture;  ///< OBJ map_Kd as written, relative to the mesh file's folder; empty: none
 };
 
 struct TriangleMesh {

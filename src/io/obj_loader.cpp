@@ -125,7 +125,7 @@ public:
     MaterialTable(const std::vector<tinyobj::material_t>& objMaterials, TriangleMesh& mesh)
         : mesh_(mesh), objMaterialCount_(objMaterials.size()) {
         for (const tinyobj::material_t& m : objMaterials)
-            mesh.materials.push_back({m.name, {m.diffuse[0], m.diffuse[1], m.diffuse[2]}});
+            mesh.materials.push_back({m.name, {m.diffuse[0], m.diffuse[1], m.diffuse[2]}, m.diffuse_texname});
     }
 
     bool any() const { return objMaterialCount_ > 0; }
