@@ -641,5 +641,32 @@ TEST_F(MeshIoTest, ShowcaseKeepsTheFilesMaterials) {
     EXPECT_GT(gltf.b, 4 * gltf.r);
 }
 
+TEST_F(MeshIoTest, ShowcaseReadsGltfBaseColorImages) {
+    // An image red in its top half, blue in the bottom; every uv of the triangle is (0.5, 0.1), which in
+    // glTF (v down the image) is near the top: red.
+    Image halves(8, 8, 3);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) halves.at(x, y)[y < 4 ? 0 : 2] = 1.0f;
+    writeImage(halves, dir_ / "halves.png", true);
+    std::string buffer;
+    for (float value : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) appendBinary(buffer, value, false);
+    for (int i = 0; i < 3; ++i)
+        for (float value : {0.5f, 0.1f}) appendBinary(buffer, value, false);
+    for (uint16_t index : {0, 1, 2}) appendBinary(buffer, index, false);
+    const std::string gltf = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
+  "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+  "textures": [{"source": 0}], "images": [{"uri": "halves.png"}],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]},
+    {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"},
+    {"bufferView": 2, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24},
+                  {"buffer": 0, "byteOffset": 60, "byteLength": 6}],
+  "buffers": [{"byteLength": 66, "uri": "data:application/octet-stream;base64,)" + base64(buffer) + "\"}]}";
+    const glm::vec3 color = modelColor(loadSceneOrMesh(write("textured.gltf", gltf), 48, 48, MeshFraming::Showcase));
+    EXPECT_GT(color.r, 4 * color.b);
+}
+
 } // namespace
 } // namespace wideray

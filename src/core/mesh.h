@@ -12,7 +12,9 @@ namespace wideray {
 struct MeshMaterial {
     std::string name;
     glm::vec3 diffuse{0.8f};
-    std::string diffuseTexture;  ///< OBJ map_Kd as written, relative to the mesh file's folder; empty: none
+    /// OBJ map_Kd, glTF baseColorTexture (an image file of its own) as written, relative to the mesh
+    /// file's folder; empty: none
+    std::string diffuseTexture;
 };
 
 struct TriangleMesh {

@@ -171,8 +171,19 @@ public:
             const std::vector<double>& color = material.pbrMetallicRoughness.baseColorFactor;
             MeshMaterial meshMaterial{material.name.empty() ? "material" + std::to_string(m) : material.name};
             if (color.size() >= 3) meshMaterial.diffuse = glm::vec3(color[0], color[1], color[2]);
+            meshMaterial.diffuseTexture = externalImage(material.pbrMetallicRoughness.baseColorTexture.index);
             mesh_.materials.push_back(meshMaterial);
         }
+    }
+
+    /// The file of a texture's image when it is a file of its own (images inside the glTF, as data
+    /// URIs or buffer views, are not decoded); empty otherwise.
+    std::string externalImage(int textureIndex) const {
+        if (textureIndex < 0 || size_t(textureIndex) >= model_.textures.size()) return {};
+        const int source = model_.textures[size_t(textureIndex)].source;
+        if (source < 0 || size_t(source) >= model_.images.size()) return {};
+        const std::string& uri = model_.images[size_t(source)].uri;
+        return uri.starts_with("data:") ? std::string() : uri;
     }
 
     void addNode(int nodeIndex, const glm::dmat4& parentTransform) {
@@ -241,8 +252,8 @@ private:
         const std::optional<int> uvAccessor = attribute("TEXCOORD_0");
         allHaveUvs_ = allHaveUvs_ && uvAccessor;
         if (allHaveUvs_) {
-            const std::vector<glm::vec2> uvs = accessors_.readFloats<2>(*uvAccessor);
-            mesh_.uvs.insert(mesh_.uvs.end(), uvs.begin(), uvs.end());
+            // glTF's v runs down the image, ours (OBJ's) up.
+            for (const glm::vec2& uv : accessors_.readFloats<2>(*uvAccessor)) mesh_.uvs.emplace_back(uv.x, 1.0f - uv.y);
         }
         if ((allHaveNormals_ && mesh_.normals.size() != mesh_.positions.size()) ||
             (allHaveUvs_ && mesh_.uvs.size() != mesh_.positions.size()))
