@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Writes small mesh files of every format the loaders read into FOLDER/{obj,ply,gltf}: the seed corpora
-of the mesh harnesses (scripts/fuzz.sh). Generated here, so that no seed is a copy of someone's mesh."""
+"""Writes small files of every format the loaders read into FOLDER/{obj,ply,gltf,pbrt}: the seed corpora
+of the mesh and pbrt harnesses (scripts/fuzz.sh). Generated here, so that no seed is a copy of someone's mesh."""
 import base64
 import json
 import struct
@@ -83,9 +83,47 @@ def gltf_seeds(out):
     (out / "cube.glb").write_bytes(struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks)
 
 
+def pbrt_seeds(out):
+    points = " ".join(f"{x} {y} {z}" for x, y, z in CUBE)
+    indices = " ".join(str(i) for t in TRIANGLES for i in t)
+    cube = f'Shape "trianglemesh" "integer indices" [ {indices} ] "point P" [ {points} ]\n'
+    (out / "v3.pbrt").write_text(
+        'LookAt 3 2 -4  0.5 0.5 0.5  0 1 0\nCamera "perspective" "float fov" [ 40 ] "float lensradius" 0.01\n'
+        'Film "image" "integer xresolution" 64 "integer yresolution" [ 48 ]\nSampler "sobol" "integer pixelsamples" 4\n'
+        'Integrator "path" "integer maxdepth" [ 5 ]\nPixelFilter "gaussian"\nWorldBegin\n'
+        'Texture "wood" "spectrum" "imagemap" "string filename" "wood.tga" "bool trilinear" "true"\n'
+        'Texture "check" "spectrum" "checkerboard" "rgb tex1" [1 1 1] "rgb tex2" [0 0 0] "float uscale" 8\n'
+        'MakeNamedMaterial "red" "string type" [ "substrate" ] "rgb Kd" [ 0.8 0.1 0.1 ] "rgb Ks" [ 0.04 0.04 0.04 ]'
+        ' "float uroughness" 0.1 "float vroughness" 0.1 "bool remaproughness" "false"\n'
+        'MakeNamedMaterial "gold" "string type" "metal" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k"\n'
+        'MakeNamedMaterial "clear" "string type" "glass" "float index" 1.5\n'
+        'MakeNamedMaterial "hidden" "string type" "uber" "rgb opacity" [ 0 0 0 ]\n'
+        'LightSource "point" "rgb I" [ 5 5 5 ] "point from" [ 0 4 0 ]\nLightSource "distant" "point to" [ 0 -1 0 ]\n'
+        'LightSource "infinite" "rgb L" [ 0.2 0.3 0.4 ]\n'
+        'AttributeBegin\n  AreaLightSource "diffuse" "rgb L" [ 4 4 4 ]\n'
+        '  Shape "trianglemesh" "integer indices" [ 0 1 2 0 2 3 ] "point P" [ 0 3 0 1 3 0 1 3 1 0 3 1 ]'
+        ' "normal N" [ 0 -1 0 0 -1 0 0 -1 0 0 -1 0 ]\nAttributeEnd\n'
+        'AttributeBegin\n  NamedMaterial "red"\n  Translate 1 0 0\n  Rotate 30 0 1 0\n  Scale 1 2 1\n  ' + cube +
+        'AttributeEnd\nAttributeBegin\n  Material "matte" "texture Kd" "check"\n  Shape "sphere" "float radius" 0.5\nAttributeEnd\n'
+        'NamedMaterial "hidden"\n' + cube + 'NamedMaterial "gold"\nInclude "more.pbrt"\n'
+        'Shape "plymesh" "string filename" "models/mesh.ply"\nWorldEnd\n')
+    (out / "v4.pbrt").write_text(
+        'Scale -1 1 1\nLookAt 0 1 -5 0 1 0 0 1 0\nCamera "perspective" "float fov" 30\nColorSpace "srgb"\nOption "bool wavefront" true\n'
+        'WorldBegin\nAttribute "shape" "float radius" 2\nMaterial "coateddiffuse" "rgb reflectance" [ 0.2 0.5 0.2 ] "float roughness" 0.1\n'
+        'Shape "bilinearmesh" "point3 P" [ 0 0 0 1 0 0 0 1 0 1 1 0 ]\nMaterial "conductor" "rgb reflectance" [ 0.9 0.6 0.3 ]\n'
+        'Shape "sphere"\nMaterial "dielectric" "spectrum eta" "glass-BK7"\nShape "sphere" "float radius" 0.3\n'
+        'Material "diffuse" "spectrum reflectance" [ 400 0.5 700 0.8 ]\nAreaLightSource "diffuse" "blackbody L" [ 6500 ] "float scale" 3\n'
+        'Shape "sphere" "float radius" 0.1\nMakeNamedMedium "fog" "string type" "homogeneous"\nMaterial "interface"\n' + cube)
+    (out / "objects.pbrt").write_text(
+        'Camera "perspective"\nWorldBegin\nCoordinateSystem "origin"\nObjectBegin "box"\n' + cube + 'ObjectEnd\n'
+        'TransformBegin\nTranslate 2 0 0\nObjectInstance "box"\nTransformEnd\nCoordSysTransform "origin"\n'
+        'ReverseOrientation\nConcatTransform [ 1 0 0 0 0 1 0 0 0 0 1 0 0 0 5 1 ]\nObjectInstance "box"\n'
+        'Transform [ 2 0 0 0 0 2 0 0 0 0 2 0 1 1 1 1 ]\nIdentity\nObjectInstance "box"\n')
+
+
 def main():
     root = Path(sys.argv[1])
-    for name, make in (("obj", obj_seeds), ("ply", ply_seeds), ("gltf", gltf_seeds)):
+    for name, make in (("obj", obj_seeds), ("ply", ply_seeds), ("gltf", gltf_seeds), ("pbrt", pbrt_seeds)):
         folder = root / name
         folder.mkdir(parents=True, exist_ok=True)
         make(folder)

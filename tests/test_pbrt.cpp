@@ -199,10 +199,10 @@ Shape "curve" "point P" [0 0 0 1 1 1 2 2 2 3 3 3]
 Material "matte" "float sigma" 20 "texture bumpmap" "nothing"
 Shape "sphere")");
     const std::vector<std::string> expected = {
-        "test.pbrt:5: PixelFilter is not supported; skipped",
-        "test.pbrt:7: Shape \"curve\" is not supported; skipped",
-        "test.pbrt:8: Material \"matte\": parameter \"float sigma\" is not supported; ignored",
-        "test.pbrt:8: Material \"matte\": parameter \"texture bumpmap\" is not supported; ignored"};
+        "test.pbrt:line 5: PixelFilter is not supported; skipped",
+        "test.pbrt:line 7: Shape \"curve\" is not supported; skipped",
+        "test.pbrt:line 8: Material \"matte\": parameter \"float sigma\" is not supported; ignored",
+        "test.pbrt:line 8: Material \"matte\": parameter \"texture bumpmap\" is not supported; ignored"};
     EXPECT_EQ(s.warnings, expected);
     EXPECT_EQ(s.analytics.size(), 1u);
 }
@@ -216,7 +216,7 @@ TEST(PbrtParser, ErrorsNameFileAndLine) {
                 "test.pbrt:line 2: \"indices\"[2] is 5, but there are 3 vertices");
     expectError("WorldBegin\nShape \"sphere\" \"real radius\" 2", "test.pbrt:line 2: unknown parameter type 'real'");
     expectError("WorldBegin\nShape \"sphere\" \"float radius\" [ 1 2 ]", "test.pbrt:line 2: \"float radius\" must be one number");
-    expectError("WorldBegin\nInclude \"missing.pbrt\"", "test.pbrt:2: cannot open");
+    expectError("WorldBegin\nInclude \"missing.pbrt\"", "test.pbrt:line 2: Include: cannot open");
     expectError("WorldBegin\nMaterial \"matte\" \"texture Kd\" \"undefined\"", "test.pbrt:line 2: \"texture Kd\" names no texture");
     expectError("Film \"image\" \"integer xresolution\" [ 0 ]", "test.pbrt:line 1: Film \"xresolution\" must be one number from 1 to 65536");
     expectError("WorldBegin\nShape \"sphere\" \"float radius\" [ 1", "'[' not closed");

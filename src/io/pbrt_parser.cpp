@@ -25,9 +25,9 @@ namespace {
 
 constexpr int kMaxIncludeDepth = 32;
 
-std::string readText(const std::filesystem::path& file, const std::string& from) {
+std::string readText(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(from.empty() ? file.string() : from, "", "cannot open " + file.string());
+    if (!in) throw InputError(file.string(), "", "cannot open scene file");
     std::ostringstream text;
     text << in.rdbuf();
     return text.str();
@@ -100,7 +100,7 @@ private:
     /// Reported once per `key`: "FILE:LINE: message".
     void warn(int line, const std::string& key, const std::string& message) {
         if (!warned_.insert(key).second) return;
-        scene_.warnings.push_back(line > 0 ? fmt::format("{}:{}: {}", fileName(), line, message)
+        scene_.warnings.push_back(line > 0 ? fmt::format("{}:line {}: {}", fileName(), line, message)
                                            : fmt::format("{}: {}", mainFile_.string(), message));
     }
     void reportUnused(const PbrtParams& params, const std::string& what) {
@@ -168,7 +168,8 @@ private:
     void skipArguments() {
         for (;;) {
             const PbrtToken& t = tokens().peek();
-            if (t.kind == PbrtToken::Kind::End || t.kind == PbrtToken::Kind::Identifier) return;
+            const bool value = t.kind == PbrtToken::Kind::Identifier && (t.text == "true" || t.text == "false");
+            if (t.kind == PbrtToken::Kind::End || (t.kind == PbrtToken::Kind::Identifier && !value)) return;
             tokens().next();
         }
     }
@@ -224,7 +225,7 @@ private:
         } else if (d == "WorldEnd") {
             // pbrt-v3 closes the world here; everything before it is already in the scene.
         }
-        else if (d == "Include" || d == "Import") include(line);
+        else if (d == "Include" || d == "Import") include(line, d);
         else if (d == "Texture") texture(line);
         else if (d == "Material") {
             const std::string type = string(line);
@@ -279,13 +280,16 @@ private:
         return glm::inverse(cameraToWorld);
     }
 
-    void include(int line) {
+    void include(int line, const std::string& directive) {
         const std::string name = string(line);
         if (files_.size() >= size_t(kMaxIncludeDepth)) fail(line, "Include nested more than 32 deep");
         std::filesystem::path path = name;
         if (path.is_relative()) path = files_.back().folder / path;
-        std::string text = readText(path, fileName() + ":" + std::to_string(line));
-        files_.emplace_back(std::move(text), path.string(), path.parent_path());
+        std::ifstream in(path, std::ios::binary);
+        if (!in) fail(line, directive + ": cannot open " + path.string());
+        std::ostringstream text;
+        text << in.rdbuf();
+        files_.emplace_back(text.str(), path.string(), path.parent_path());
     }
 
     void camera(int line) {
@@ -407,7 +411,11 @@ private:
             std::filesystem::path path = f->strings[0];
             if (path.is_relative()) path = files_.back().folder / path;
             if (auto it = plyMeshes_.find(path); it != plyMeshes_.end()) meshIndex = it->second;
-            else mesh = loadMesh(path);
+            else try {
+                mesh = loadMesh(path);
+            } catch (const InputError& e) {
+                fail(line, std::string("Shape \"plymesh\": ") + e.what());
+            }
             for (const char* displacement : {"displacement", "edgelength"}) p.find(displacement);
             if (p.has("displacement")) warn(line, "plymesh/displacement", "Shape \"plymesh\": displacement is not supported; ignored");
         } else {
@@ -656,6 +664,6 @@ SceneDescription parsePbrt(const std::string& text, const std::filesystem::path&
     return PbrtReader(file).read(text);
 }
 
-SceneDescription loadPbrt(const std::filesystem::path& file) { return parsePbrt(readText(file, ""), file); }
+SceneDescription loadPbrt(const std::filesystem::path& file) { return parsePbrt(readText(file), file); }
 
 } // namespace wideray
