@@ -103,10 +103,15 @@ GALLERY_SCENES := beer metals soft_shadows glossy dof textures fog polarization 
 # The path-traced interior needs the shared Sponza.
 GALLERY_SCENES += $(if $(wildcard $(SCENES_DIR)/crytek-sponza/sponza.obj),sponza_path)
 GALLERY_SCENES += $(if $(wildcard $(SCENES_DIR)/stanford-bunny/bun_zipper.ply),bunny_field)
+# The Bitterli scenes from their own pbrt files (docs/scene-format.md, "pbrt scene files"), when present.
+GALLERY_PBRT := $(if $(wildcard $(SCENES_DIR)/bitterli-country-kitchen/scene.pbrt),bitterli-country-kitchen:640x360) \
+  $(if $(wildcard $(SCENES_DIR)/bitterli-coffee-maker/scene.pbrt),bitterli-coffee-maker:400x500)
 gallery: configure
 	cmake --build $(BUILD) -j $(JOBS) --target wideray
 	mkdir -p docs/gallery
 	$(BUILD)/wideray render $(GALLERY_SCENES:%=scenes/%.json) -o docs/gallery/
+	for entry in $(GALLERY_PBRT); do scene=$${entry%%:*}; \
+	  $(BUILD)/wideray render $(SCENES_DIR)/$$scene/scene.pbrt --size $${entry##*:} --spp 64 -o docs/gallery/$$scene.png || exit 1; done
 
 install: build
 	cmake --install $(BUILD)

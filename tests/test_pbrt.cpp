@@ -121,7 +121,11 @@ TEST(PbrtParser, ShapesMaterialsAndTransforms) {
         Material "glass" "float index" 1.33
         Shape "sphere" "float radius" 2
         Material "mirror"
-        Shape "sphere")");
+        Shape "sphere"
+        AttributeBegin
+          Translate 0 0 2
+          Shape "cylinder" "float radius" 0.5 "float zmin" 0 "float zmax" 4
+        AttributeEnd)");
     ASSERT_EQ(s.meshes.size(), 2u);
     ASSERT_EQ(s.instances.size(), 2u);
     EXPECT_EQ(s.meshes[0].uvs.size(), 3u);
@@ -137,7 +141,14 @@ TEST(PbrtParser, ShapesMaterialsAndTransforms) {
     EXPECT_EQ(plastic.color, glm::vec3(0.1f, 0.2f, 0.3f));
     EXPECT_FLOAT_EQ(plastic.specular, 0.5f);
     EXPECT_NEAR(plastic.shininess, 198.0f, 1e-2f);  // 2 / alpha^2 - 2
-    ASSERT_EQ(s.analytics.size(), 2u);
+    ASSERT_EQ(s.analytics.size(), 3u);
+    // The cylinder's axis runs along z from 2 to 6, radius 0.5.
+    const AnalyticObject& tube = s.analytics[2];
+    EXPECT_EQ(tube.shape, AnalyticShape::Cylinder);
+    EXPECT_FALSE(tube.capped);
+    const glm::vec3 top(tube.transform * glm::vec4(0, 1, 0, 1)), rim(tube.transform * glm::vec4(1, 0, 0, 1));
+    EXPECT_NEAR(top.z, 6.0f, 1e-5f);
+    EXPECT_NEAR(glm::distance(rim, glm::vec3(0, 0, 4)), 0.5f, 1e-5f);
     EXPECT_EQ(s.materials[s.analytics[0].material].type, MaterialType::Dielectric);
     EXPECT_FLOAT_EQ(s.materials[s.analytics[0].material].ior, 1.33f);
     EXPECT_NEAR(s.analytics[0].transform[0][0], 2.0f, 1e-6f);

@@ -19,19 +19,12 @@
 #include "io/pbrt_materials.h"
 #include "io/pbrt_params.h"
 #include "io/pbrt_tokenizer.h"
+#include "io/scene_parser.h"
 
 namespace wideray {
 namespace {
 
 constexpr int kMaxIncludeDepth = 32;
-
-std::string readText(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) throw InputError(file.string(), "", "cannot open scene file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
 
 const std::set<std::string> kParamTypes = {"integer", "float",   "point",  "point2", "point3", "vector", "vector2",
                                            "vector3", "normal",  "normal3", "rgb",   "color",  "spectrum",
@@ -391,7 +384,9 @@ private:
             for (const char* partial : {"zmin", "zmax", "phimax"})
                 if (p.has(partial)) warn(line, std::string("sphere/") + partial, "Shape \"sphere\": partial spheres are not supported; whole spheres instead");
             if (state_.areaLight) sphereLight(line, radius);
-            else {
+            else if (currentObject_) {
+                warn(line, "object/analytic", "spheres and cylinders inside ObjectBegin are not supported; skipped");
+            } else {
                 AnalyticObject ball;
                 ball.shape = AnalyticShape::Ellipsoid;
                 ball.transform = state_.ctm * glm::scale(glm::mat4(1.0f), glm::vec3(radius));
@@ -399,6 +394,25 @@ private:
                 scene_.analytics.push_back(ball);
             }
             reportUnused(p, "Shape \"sphere\"");
+            return;
+        }
+        if (type == "cylinder") {
+            // pbrt's open cylinder about z from zmin to zmax; ours is about y from -1 to 1.
+            const float radius = p.number("radius", 1.0f), zmin = p.number("zmin", -1.0f), zmax = p.number("zmax", 1.0f);
+            if (!(radius > 0.0f) || !(zmax > zmin)) fail(line, "Shape \"cylinder\": radius must be positive and zmax above zmin");
+            if (p.has("phimax")) warn(line, "cylinder/phimax", "Shape \"cylinder\": partial cylinders are not supported; whole ones instead");
+            p.find("phimax");
+            if (state_.areaLight) warn(line, "arealight/cylinder", "AreaLightSource on a cylinder: wideray's area lights are quads and spheres; the cylinder is kept, not emitting");
+            AnalyticObject tube;
+            tube.shape = AnalyticShape::Cylinder;
+            tube.capped = false;
+            tube.transform = state_.ctm * glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 0.5f * (zmin + zmax))) *
+                             glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0)) *
+                             glm::scale(glm::mat4(1.0f), glm::vec3(radius, 0.5f * (zmax - zmin), radius));
+            tube.material = state_.material;
+            if (!currentObject_) scene_.analytics.push_back(tube);
+            else warn(line, "object/analytic", "spheres and cylinders inside ObjectBegin are not supported; skipped");
+            reportUnused(p, "Shape \"cylinder\"");
             return;
         }
         TriangleMesh mesh;
@@ -664,6 +678,6 @@ SceneDescription parsePbrt(const std::string& text, const std::filesystem::path&
     return PbrtReader(file).read(text);
 }
 
-SceneDescription loadPbrt(const std::filesystem::path& file) { return parsePbrt(readText(file), file); }
+SceneDescription loadPbrt(const std::filesystem::path& file) { return parsePbrt(readSceneText(file), file); }
 
 } // namespace wideray

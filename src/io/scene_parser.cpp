@@ -1040,8 +1040,6 @@ SceneDescription parseScene(const std::string& jsonText, const std::filesystem::
     return SceneReader(file).read(json);
 }
 
-namespace {
-
 std::string readSceneText(const std::filesystem::path& file) {
     std::ifstream in(file, std::ios::binary);
     if (!in) throw InputError(file.string(), "", "cannot open scene file");
@@ -1049,8 +1047,6 @@ std::string readSceneText(const std::filesystem::path& file) {
     text << in.rdbuf();
     return text.str();
 }
-
-} // namespace
 
 SceneDescription loadScene(const std::filesystem::path& file) { return parseScene(readSceneText(file), file); }
 

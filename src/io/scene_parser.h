@@ -8,6 +8,9 @@
 
 namespace wideray {
 
+/// The bytes of a scene file (JSON or pbrt); throws InputError when it cannot be read.
+std::string readSceneText(const std::filesystem::path& file);
+
 /// Reads and parses a scene file. Throws InputError for anything wrong with it or the meshes it uses.
 SceneDescription loadScene(const std::filesystem::path& file);
 
