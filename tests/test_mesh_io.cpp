@@ -641,6 +641,28 @@ TEST_F(MeshIoTest, ShowcaseKeepsTheFilesMaterials) {
     EXPECT_GT(gltf.b, 4 * gltf.r);
 }
 
+/// A PLY square of two triangles facing +z whose vertices carry `colors` (properties of `type`).
+std::string coloredSquarePly(const std::string& type, const std::string& colors) {
+    return "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+           "property " + type + " red\nproperty " + type + " green\nproperty " + type + " blue\n"
+           "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+           "0 0 0 " + colors + "\n1 0 0 " + colors + "\n1 1 0 " + colors + "\n0 1 0 " + colors + "\n3 0 1 2\n3 0 2 3\n";
+}
+
+TEST_F(MeshIoTest, PlyVertexColorsTintTheModel) {
+    // 8-bit colors are sRGB (128 is 0.216 linear); float colors are taken as linear values.
+    const TriangleMesh bytes = loadMesh(write("bytes.ply", coloredSquarePly("uchar", "255 128 0")));
+    ASSERT_EQ(bytes.colors.size(), 4u);
+    EXPECT_NEAR(bytes.colors[0].r, 1.0f, 1e-6f);
+    EXPECT_NEAR(bytes.colors[0].g, 0.2158605f, 1e-5f);
+    EXPECT_EQ(bytes.colors[0].b, 0.0f);
+    const TriangleMesh floats = loadMesh(write("floats.ply", coloredSquarePly("float", "0.1 0.2 0.9")));
+    EXPECT_EQ(floats.colors[3], glm::vec3(0.1f, 0.2f, 0.9f));
+    const glm::vec3 shown = modelColor(loadSceneOrMesh(write("shown.ply", coloredSquarePly("uchar", "20 40 230")), 48, 48,
+                                                       MeshFraming::Showcase));
+    EXPECT_GT(shown.b, 4 * shown.r);
+}
+
 TEST_F(MeshIoTest, ShowcaseReadsGltfBaseColorImages) {
     // An image red in its top half, blue in the bottom; every uv of the triangle is (0.5, 0.1), which in
     // glTF (v down the image) is near the top: red.

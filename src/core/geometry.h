@@ -21,6 +21,7 @@ struct SurfacePoint {
     glm::vec2 uv{0.0f};
     uint32_t material = 0;
     uint32_t instance = kInvalidId;  ///< the scene instance the primitive belongs to, where it has one
+    glm::vec3 vertexColor{1.0f};     ///< the mesh's per-vertex color here, which tints its material; white without one
 };
 
 class UserGeometry;

@@ -21,6 +21,7 @@ struct TriangleMesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;      ///< per vertex; empty or the size of positions
     std::vector<glm::vec2> uvs;          ///< per vertex; empty or the size of positions
+    std::vector<glm::vec3> colors;       ///< per vertex, linear RGB (PLY colors); empty or the size of positions
     std::vector<glm::uvec3> triangles;   ///< vertex indices, all checked < positions.size()
     std::vector<uint32_t> faceMaterial;  ///< per triangle index into materials; empty = no materials
     std::vector<MeshMaterial> materials;

@@ -17,7 +17,7 @@ bool flattened(const std::vector<bool>& twoLevel, const MeshInstance& instance) 
 
 TriangleMesh flattenTriangles(const SceneDescription& scene, const std::vector<bool>& twoLevel) {
     size_t vertexCount = 0, triangleCount = 0;
-    bool anyNormals = false, anyUvs = false;
+    bool anyNormals = false, anyUvs = false, anyColors = false;
     for (const MeshInstance& instance : scene.instances) {
         if (!flattened(twoLevel, instance)) continue;
         const TriangleMesh& mesh = scene.meshes.at(instance.mesh);
@@ -28,6 +28,7 @@ TriangleMesh flattenTriangles(const SceneDescription& scene, const std::vector<b
             throw InputError(scene.file.string(), "", "the flattened instances have more than 2^32 - 1 vertices or triangles; "
                                                       "trace them two-level (--instancing two-level or auto)");
         anyUvs = anyUvs || !mesh.uvs.empty();
+        anyColors = anyColors || !mesh.colors.empty();
     }
 
     TriangleMesh world;
@@ -36,6 +37,7 @@ TriangleMesh flattenTriangles(const SceneDescription& scene, const std::vector<b
     world.faceMaterial.reserve(triangleCount);
     if (anyNormals) world.normals.reserve(vertexCount);
     if (anyUvs) world.uvs.reserve(vertexCount);
+    if (anyColors) world.colors.reserve(vertexCount);
 
     for (const MeshInstance& instance : scene.instances) {
         if (!flattened(twoLevel, instance)) continue;
@@ -55,6 +57,10 @@ TriangleMesh flattenTriangles(const SceneDescription& scene, const std::vector<b
         if (anyUvs) {
             if (mesh.uvs.empty()) world.uvs.resize(world.positions.size(), glm::vec2(0.0f));
             world.uvs.insert(world.uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
+        }
+        if (anyColors) {  // meshes without colors are white: their materials as they are
+            if (mesh.colors.empty()) world.colors.resize(world.positions.size(), glm::vec3(1.0f));
+            world.colors.insert(world.colors.end(), mesh.colors.begin(), mesh.colors.end());
         }
         for (size_t t = 0; t < mesh.triangles.size(); ++t) {
             const glm::uvec3 tri = mesh.triangles[t] + firstVertex;
@@ -117,6 +123,8 @@ SurfacePoint TriangleGeometry::surface(const Ray&, const Hit& hit) const {
         if (glm::dot(n, n) > 0.0f) sp.shadingNormal = glm::normalize(n);
     }
     if (!world_.uvs.empty()) sp.uv = w * world_.uvs[tri.x] + hit.u * world_.uvs[tri.y] + hit.v * world_.uvs[tri.z];
+    if (!world_.colors.empty())
+        sp.vertexColor = w * world_.colors[tri.x] + hit.u * world_.colors[tri.y] + hit.v * world_.colors[tri.z];
     sp.material = world_.faceMaterial.empty() ? 0 : world_.faceMaterial[hit.primId];
     sp.instance = instanceOf(hit.primId);
     return sp;

@@ -77,7 +77,8 @@ SceneDescription showcaseMesh(TriangleMesh mesh, const std::filesystem::path& fi
     }
     if (scene.materials.empty() || mesh.faceMaterial.empty()) {
         mesh.faceMaterial.assign(mesh.triangles.size(), uint32_t(scene.materials.size()));
-        scene.materials.push_back({"default", MaterialType::Diffuse, glm::vec3(0.8f)});
+        // A mesh colored per vertex shows its colors as they are; others are grey.
+        scene.materials.push_back({"default", MaterialType::Diffuse, glm::vec3(mesh.colors.empty() ? 0.8f : 1.0f)});
     }
     mesh.materials.clear();
     scene.meshes.push_back(std::move(mesh));

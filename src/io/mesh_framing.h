@@ -30,7 +30,7 @@ enum class MeshFraming { Benchmark, Showcase };
 /// box's diagonal) fills the narrower field of view (40 degrees vertical) with a 5% margin, seen from
 /// the benchmark's direction c + normalize(0.3, 0.25, 1.0) d; the mesh file's materials (OBJ Kd and
 /// map_Kd where the mesh has uvs, glTF baseColorFactor and a baseColorTexture of its own file), one
-/// grey where it has none; the benchmark's
+/// grey where it has none (white under PLY vertex colors, which tint every material); the benchmark's
 /// key light, a fill light at the camera (a third of the key's light on the model, so that what the
 /// key leaves in shadow is not black) and a sky-blue background, which the path tracer also takes as
 /// a constant sky. `file` resolves texture paths; images that cannot be read are reported in

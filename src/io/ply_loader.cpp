@@ -288,12 +288,20 @@ void skipElement(Reader& in, const PlyElement& element, const std::string& file)
 }
 
 /// Where a vertex property goes: an index into VertexValues, or none.
-enum VertexSlot { X, Y, Z, NX, NY, NZ, U, V, SlotCount, Ignored = SlotCount };
+enum VertexSlot { X, Y, Z, NX, NY, NZ, U, V, R, G, B, SlotCount, Ignored = SlotCount };
 using VertexValues = std::array<float, SlotCount + 1>; // the last entry absorbs ignored scalars
 
+glm::vec3 srgbToLinear(const glm::vec3& c) {
+    glm::vec3 out;
+    for (int i = 0; i < 3; ++i) out[i] = c[i] <= 0.04045f ? c[i] / 12.92f : std::pow((c[i] + 0.055f) / 1.055f, 2.4f);
+    return out;
+}
+
 VertexSlot slotNamed(const std::string& name) {
-    static const std::array<std::pair<std::string_view, VertexSlot>, 10> slots{{
-        {"x", X}, {"y", Y}, {"z", Z}, {"nx", NX}, {"ny", NY}, {"nz", NZ}, {"u", U}, {"v", V}, {"s", U}, {"t", V}}};
+    static const std::array<std::pair<std::string_view, VertexSlot>, 19> slots{{
+        {"x", X}, {"y", Y}, {"z", Z}, {"nx", NX}, {"ny", NY}, {"nz", NZ}, {"u", U}, {"v", V}, {"s", U}, {"t", V},
+        {"red", R}, {"green", G}, {"blue", B}, {"r", R}, {"g", G}, {"b", B},
+        {"diffuse_red", R}, {"diffuse_green", G}, {"diffuse_blue", B}}};
     for (const auto& [slotName, slot] : slots)
         if (name == slotName) return slot;
     return Ignored;
@@ -313,10 +321,16 @@ void readVertices(Reader& in, const PlyElement& element, size_t reserve, Triangl
         throw InputError(file, "header", "element vertex lacks property x, y or z");
     const bool withNormals = present[NX] && present[NY] && present[NZ];
     const bool withUvs = present[U] && present[V];
+    const bool withColors = present[R] && present[G] && present[B];
+    // Colors stored as integers are 8-bit sRGB (0-255); as floats, linear values.
+    bool integerColors = false;
+    for (size_t p = 0; p < slots.size(); ++p)
+        if (slots[p] == R) integerColors = isInteger(element.properties[p].type);
 
     mesh.positions.reserve(reserve);
     if (withNormals) mesh.normals.reserve(reserve);
     if (withUvs) mesh.uvs.reserve(reserve);
+    if (withColors) mesh.colors.reserve(reserve);
     VertexValues values{};
     for (size_t i = 0; i < element.count; ++i) {
         for (size_t p = 0; p < slots.size(); ++p) {
@@ -327,6 +341,10 @@ void readVertices(Reader& in, const PlyElement& element, size_t reserve, Triangl
         mesh.positions.emplace_back(values[X], values[Y], values[Z]);
         if (withNormals) mesh.normals.emplace_back(values[NX], values[NY], values[NZ]);
         if (withUvs) mesh.uvs.emplace_back(values[U], values[V]);
+        if (withColors) {
+            const glm::vec3 c(values[R], values[G], values[B]);
+            mesh.colors.push_back(integerColors ? srgbToLinear(glm::clamp(c / 255.0f, 0.0f, 1.0f)) : c);
+        }
     }
 }
 

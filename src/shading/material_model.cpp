@@ -71,6 +71,10 @@ glm::vec3 materialColor(const Material& material, const glm::vec3& position, con
     return material.colorTexture ? evaluateColor(*material.colorTexture, position, uv) : material.color;
 }
 
+glm::vec3 materialColor(const Material& material, const SurfacePoint& sp) {
+    return materialColor(material, sp.position, sp.uv) * sp.vertexColor;
+}
+
 float materialRoughness(const Material& material, const glm::vec3& position, const glm::vec2& uv) {
     const float r = material.roughnessTexture ? evaluateScalar(*material.roughnessTexture, position, uv) : material.roughness;
     return std::clamp(r, 0.0f, 1.0f);

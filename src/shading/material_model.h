@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/geometry.h"
 #include "core/scene.h"
 
 namespace wideray {
@@ -22,6 +23,8 @@ const std::vector<std::string>& conductorPresetNames();
 
 /// The material's color (diffuse albedo, mirror reflectance) at a surface point.
 glm::vec3 materialColor(const Material& material, const glm::vec3& position, const glm::vec2& uv);
+/// The same at a surface point, tinted by the mesh's vertex color there.
+glm::vec3 materialColor(const Material& material, const SurfacePoint& sp);
 
 /// The material's roughness at a surface point, clamped to [0, 1].
 float materialRoughness(const Material& material, const glm::vec3& position, const glm::vec2& uv);

@@ -135,10 +135,10 @@ void scatterPathVertex(const ShadingContext& context, const PathState& path, con
     SampledLobes lobes{material.type, normal, -direction};
     switch (material.type) {
     case MaterialType::Diffuse:
-        lobes.albedo = materialColor(material, sp.position, sp.uv);
+        lobes.albedo = materialColor(material, sp);
         break;
     case MaterialType::Plastic:
-        lobes.albedo = materialColor(material, sp.position, sp.uv);
+        lobes.albedo = materialColor(material, sp);
         lobes.specular = material.specular;
         lobes.shininess = material.shininess;
         if (lobes.specular > 0.0f)
@@ -152,7 +152,7 @@ void scatterPathVertex(const ShadingContext& context, const PathState& path, con
         if (!lastEvent) continuePath(context, path, sp.position, mirrored, lobes.fresnel, 0.0f, path.media, rng, out);
         return;
     case MaterialType::Mirror: {
-        const glm::vec3 tint = materialColor(material, sp.position, sp.uv);
+        const glm::vec3 tint = materialColor(material, sp);
         if (!lastEvent) continuePath(context, path, sp.position, mirrored, {tint, tint}, 0.0f, path.media, rng, out);
         return;
     }

@@ -26,7 +26,7 @@ struct Lobe {
 void addDirectLight(const ShadingContext& context, const PathState& path, const SurfacePoint& sp,
                     const glm::vec3& normal, const glm::vec3& toViewer, const Material& material, SampleRng& rng,
                     ScatterOutput& out) {
-    const glm::vec3 diffuse = materialColor(material, sp.position, sp.uv) * kInvPi;
+    const glm::vec3 diffuse = materialColor(material, sp) * kInvPi;
     const glm::vec3 weight = path.throughput();
     out.lightScratch.clear();
     sampleLights(context.scene.lights, sp.position, context.epsilon, path.ray.time, INT_MAX, rng, out.lightScratch);
@@ -138,7 +138,7 @@ void scatterAtSurface(const ShadingContext& context, const PathState& path, cons
     const glm::vec3 mirrored = reflectDirection(direction, normal);
     switch (material.type) {
     case MaterialType::Mirror: {
-        const glm::vec3 tint = materialColor(material, sp.position, sp.uv);
+        const glm::vec3 tint = materialColor(material, sp);
         followLobe(context, path, sp.position, normal, material, 0.0f, {mirrored, 1.0f, {tint, tint}, path.media, 0},
                    rng, out);
         break;
