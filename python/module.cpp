@@ -1,8 +1,12 @@
 // wideray._wideray: the public C++ API (include/wideray/) over numpy arrays. python/wideray/__init__.py
 // is the documented surface; this module checks shapes and dtypes, converts, and releases the GIL
-// while tracing.
+// while building and tracing.
+#include <functional>
+#include <mutex>
+#include <shared_mutex>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <pybind11/numpy.h>
@@ -15,6 +19,36 @@
 namespace py = pybind11;
 
 namespace {
+
+/// A wideray::Scene that Python threads may share: the C++ scene may be traced by many threads but
+/// not while it is built or added to, and Python code has no reason to know that. Additions and builds
+/// take the lock alone, tracing shares it; it is taken with the GIL released, so a thread waiting for
+/// it never blocks one that holds it.
+struct LockedScene {
+    explicit LockedScene(const wideray::SceneOptions& options) : scene(options) {}
+    wideray::Scene scene;
+    mutable std::shared_mutex mutex;
+
+    template <typename Change>
+    auto change(const Change& f) {
+        py::gil_scoped_release release;
+        std::unique_lock lock(mutex);
+        return f(scene);
+    }
+    /// Calls f(scene) on the built scene (building it first if an addition invalidated it).
+    template <typename Read>
+    auto read(const Read& f) {
+        py::gil_scoped_release release;
+        for (;;) {
+            {
+                std::shared_lock lock(mutex);
+                if (scene.built()) return std::invoke(f, std::as_const(scene));
+            }
+            std::unique_lock lock(mutex);
+            if (!scene.built()) scene.build();
+        }
+    }
+};
 
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 
@@ -88,19 +122,21 @@ RayArrays rayArrays(const py::array& origins, const py::array& directions, const
 /// conversion runs in parallel and in cache like the tracing.
 constexpr size_t kRaysPerTask = 4096;
 
-/// Calls trace(rays, first) for tasks of up to kRaysPerTask rays on every core, without the GIL.
+/// Calls trace(scene, rays, first) for tasks of up to kRaysPerTask rays on every core, without the GIL.
 template <typename Trace>
-void traceInTasks(const RayArrays& arrays, const Trace& trace) {
-    py::gil_scoped_release release;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, arrays.size(), kRaysPerTask), [&](const tbb::blocked_range<size_t>& r) {
-        thread_local std::vector<wideray::Ray> rays;
-        rays.resize(r.size());
-        for (size_t i = 0; i < r.size(); ++i) rays[i] = arrays.ray(r.begin() + i);
-        trace(std::span<const wideray::Ray>(rays), r.begin());
+void traceInTasks(LockedScene& locked, const RayArrays& arrays, const Trace& trace) {
+    locked.read([&](const wideray::Scene& scene) {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, arrays.size(), kRaysPerTask),
+                          [&](const tbb::blocked_range<size_t>& r) {
+                              thread_local std::vector<wideray::Ray> rays;
+                              rays.resize(r.size());
+                              for (size_t i = 0; i < r.size(); ++i) rays[i] = arrays.ray(r.begin() + i);
+                              trace(scene, std::span<const wideray::Ray>(rays), r.begin());
+                          });
     });
 }
 
-py::tuple intersect(const wideray::Scene& scene, const py::array& origins, const py::array& directions,
+py::tuple intersect(LockedScene& scene, const py::array& origins, const py::array& directions,
                     const py::object& tnear, const py::object& tfar) {
     const RayArrays arrays = rayArrays(origins, directions, tnear, tfar);
     const py::ssize_t n = py::ssize_t(arrays.size());
@@ -108,7 +144,7 @@ py::tuple intersect(const wideray::Scene& scene, const py::array& origins, const
     py::array_t<int64_t> prim(n), geom(n);
     float *pt = t.mutable_data(), *pu = u.mutable_data(), *pv = v.mutable_data();
     int64_t *pp = prim.mutable_data(), *pg = geom.mutable_data();
-    traceInTasks(arrays, [&](std::span<const wideray::Ray> rays, size_t first) {
+    traceInTasks(scene, arrays, [&](const wideray::Scene& scene, std::span<const wideray::Ray> rays, size_t first) {
         thread_local std::vector<wideray::Hit> hits;
         hits.resize(rays.size());
         scene.intersect(rays, hits, wideray::Coherence::Incoherent, wideray::Threading::Caller);
@@ -123,12 +159,12 @@ py::tuple intersect(const wideray::Scene& scene, const py::array& origins, const
     return py::make_tuple(t, prim, u, v, geom);
 }
 
-py::array_t<bool> occluded(const wideray::Scene& scene, const py::array& origins, const py::array& directions,
+py::array_t<bool> occluded(LockedScene& scene, const py::array& origins, const py::array& directions,
                            const py::object& tnear, const py::object& tfar) {
     const RayArrays arrays = rayArrays(origins, directions, tnear, tfar);
     py::array_t<bool> result(py::ssize_t(arrays.size()));
     bool* out = result.mutable_data();
-    traceInTasks(arrays, [&](std::span<const wideray::Ray> rays, size_t first) {
+    traceInTasks(scene, arrays, [&](const wideray::Scene& scene, std::span<const wideray::Ray> rays, size_t first) {
         thread_local std::vector<uint8_t> answers;
         answers.resize(rays.size());
         scene.occluded(rays, answers, wideray::Coherence::Incoherent, wideray::Threading::Caller);
@@ -148,10 +184,11 @@ wideray::SceneOptions sceneOptions(const std::string& quality, int bvhWidth, con
     return options;
 }
 
-uint32_t addMesh(wideray::Scene& scene, const py::array& vertices, const py::array& faces) {
+uint32_t addMesh(LockedScene& scene, const py::array& vertices, const py::array& faces) {
     const FloatArray v = floatRows(vertices, "vertices", 3);
     const std::vector<uint32_t> indices = faceIndices(faces, v.shape(0));
-    return scene.addTriangleMesh({v.data(), size_t(v.size())}, indices);
+    const std::span<const float> positions(v.data(), size_t(v.size()));
+    return scene.change([&](wideray::Scene& s) { return s.addTriangleMesh(positions, indices); });
 }
 
 py::array_t<float> render(const std::string& file, int width, int height, int spp, const std::string& integrator,
@@ -175,38 +212,36 @@ PYBIND11_MODULE(_wideray, m) {
     m.attr("__version__") = wideray::version();
     m.def("best_isa", &wideray::bestIsaName);
 
-    py::class_<wideray::Scene>(m, "Scene")
+    py::class_<LockedScene>(m, "Scene")
         .def(py::init([](const std::string& quality, int bvhWidth, const std::string& kernel, const std::string& isa) {
-                 return std::make_unique<wideray::Scene>(sceneOptions(quality, bvhWidth, kernel, isa));
+                 return std::make_unique<LockedScene>(sceneOptions(quality, bvhWidth, kernel, isa));
              }),
              py::arg("quality"), py::arg("bvh_width"), py::arg("kernel"), py::arg("isa"))
         .def("add_mesh", &addMesh)
         .def("add_instance",
-             [](wideray::Scene& scene, uint32_t mesh, const py::array& matrix) {
+             [](LockedScene& scene, uint32_t mesh, const py::array& matrix) {
                  auto m = FloatArray::ensure(matrix);
                  if (!m || m.ndim() != 2 || m.shape(1) != 4 || (m.shape(0) != 3 && m.shape(0) != 4))
                      throw py::value_error("transform must be a 3x4 or 4x4 matrix of numbers");
                  wideray::Transform t;
                  for (int r = 0; r < 3; ++r)
                      for (int c = 0; c < 4; ++c) t.m[r][c] = m.at(r, c);
-                 return scene.addInstance(mesh, t);
+                 return scene.change([&](wideray::Scene& s) { return s.addInstance(mesh, t); });
              })
         .def("add_spheres",
-             [](wideray::Scene& scene, const py::array& centers, const py::object& radii) {
+             [](LockedScene& scene, const py::array& centers, const py::object& radii) {
                  const FloatArray c = floatRows(centers, "centers", 3);
                  const std::vector<float> r = broadcast(radii, size_t(c.shape(0)), "radii");
-                 return scene.addSpheres({c.data(), size_t(c.size())}, r);
+                 const std::span<const float> centerValues(c.data(), size_t(c.size()));
+                 return scene.change([&](wideray::Scene& s) { return s.addSpheres(centerValues, r); });
              })
-        .def("build", [](wideray::Scene& scene) {
-            py::gil_scoped_release release;
-            scene.build();
-        })
+        .def("build", [](LockedScene& scene) { scene.change([](wideray::Scene& s) { s.build(); }); })
         .def("intersect", &intersect)
         .def("occluded", &occluded)
-        .def_property_readonly("bounds", &wideray::Scene::bounds)
-        .def_property_readonly("primitive_count", &wideray::Scene::primitiveCount)
-        .def_property_readonly("bytes", &wideray::Scene::bytes)
-        .def_property_readonly("description", &wideray::Scene::description);
+        .def_property_readonly("bounds", [](LockedScene& s) { return s.read(&wideray::Scene::bounds); })
+        .def_property_readonly("primitive_count", [](LockedScene& s) { return s.read(&wideray::Scene::primitiveCount); })
+        .def_property_readonly("bytes", [](LockedScene& s) { return s.read(&wideray::Scene::bytes); })
+        .def_property_readonly("description", [](LockedScene& s) { return s.read(&wideray::Scene::description); });
 
     m.def("render", &render);
     m.def("load_mesh", [](const std::string& path) {

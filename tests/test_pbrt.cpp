@@ -231,6 +231,15 @@ TEST(PbrtParser, ErrorsNameFileAndLine) {
     expectError("WorldBegin\nMaterial \"matte\" \"texture Kd\" \"undefined\"", "test.pbrt:line 2: \"texture Kd\" names no texture");
     expectError("Film \"image\" \"integer xresolution\" [ 0 ]", "test.pbrt:line 1: Film \"xresolution\" must be one number from 1 to 65536");
     expectError("WorldBegin\nShape \"sphere\" \"float radius\" [ 1", "'[' not closed");
+    // Found by review, kept as regressions: numbers that are not finite floats, directories as files,
+    // objects that instance objects (an object could grow by copies of itself).
+    expectError("WorldBegin\nShape \"sphere\" \"float radius\" [ -nan ]", "test.pbrt:line 2: '-nan' is not a finite 32-bit float");
+    expectError("Film \"image\" \"integer xresolution\" [ 1e39 ]", "test.pbrt:line 1: '1e39' is not a finite 32-bit float");
+    expectError("WorldBegin\nInclude \"" + kData.string() + "\"", "test.pbrt:line 2: Include: cannot open " + kData.string() + " (not a regular file)");
+    expectError("WorldBegin\nObjectBegin \"a\"\nShape \"trianglemesh\" \"integer indices\" [0 1 2] \"point P\" [0 0 0 1 0 0 0 1 0]\n"
+                "ObjectEnd\nObjectBegin \"b\"\nObjectInstance \"a\"",
+                "test.pbrt:line 6: ObjectInstance \"a\" inside ObjectBegin (nested instancing is not supported)");
+    expectError("WorldBegin\nObjectBegin \"a\"\nObjectBegin \"b\"", "test.pbrt:line 3: ObjectBegin \"b\" inside another ObjectBegin");
 }
 
 Image renderScene(const SceneDescription& scene) {

@@ -28,7 +28,7 @@ struct Transform {
 /// What addTriangleMesh does with the caller's arrays.
 enum class Sharing {
     Copy,    ///< copied at once; the caller may free them when the call returns
-    Shared,  ///< read by build() and not copied before: they must stay alive and unchanged until then
+    Shared,  ///< not copied but read by every build(): keep them alive until the scene's last build()
 };
 
 /// Who traces a batch of rays.

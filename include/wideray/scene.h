@@ -41,7 +41,7 @@ public:
     /// one copy and a BVH of their own (two-level instancing).
     uint32_t addInstance(uint32_t meshId, const Transform& transform);
     /// Adds spheres (x, y, z per center, one radius each) and returns their geomId; a hit's primId is
-    /// the sphere's index, its u and v the spherical coordinates of the hit point over [0, 1].
+    /// the sphere's index (u and v are 0: the hit point is origin + t * direction).
     uint32_t addSpheres(std::span<const float> centers, std::span<const float> radii);
 
     /// Builds the acceleration structure of everything added so far (again after later additions).

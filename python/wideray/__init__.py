@@ -37,6 +37,7 @@ class Hits(tuple):
 
 class Scene:
     """Triangle meshes (and their instances and spheres) in a wide BVH, built on first use.
+    Any number of threads may add to, build and trace one scene at once.
 
     Scene(vertices, faces) is a scene of one mesh, whose geom_id is 0. quality is "fast" or "high"
     (spatial splits); kernel and isa force a kernel ("single", "stream", ...) or an instruction set
@@ -45,7 +46,6 @@ class Scene:
 
     def __init__(self, vertices=None, faces=None, *, quality="fast", bvh_width=8, kernel="", isa=""):
         self._scene = _wideray.Scene(quality, bvh_width, kernel, isa)
-        self._built = False
         if (vertices is None) != (faces is None):
             raise ValueError("give both vertices and faces, or neither")
         if vertices is not None:
@@ -53,55 +53,46 @@ class Scene:
 
     def add_mesh(self, vertices, faces):
         """Adds a mesh of (n, 3) vertex positions and (m, 3) vertex indices; returns its geom_id."""
-        self._built = False
         return self._scene.add_mesh(_np.asarray(vertices), _np.asarray(faces))
 
     def add_instance(self, mesh_id, transform):
         """Places mesh mesh_id once more by a 3x4 or 4x4 object-to-world matrix; returns its geom_id."""
-        self._built = False
         return self._scene.add_instance(mesh_id, _np.asarray(transform))
 
     def add_spheres(self, centers, radii):
         """Adds spheres ((k, 3) centers, one radius or k); returns their geom_id (prim_id: the sphere)."""
-        self._built = False
         return self._scene.add_spheres(_np.asarray(centers), radii)
 
     def build(self):
         """Builds the BVH now (tracing builds it when needed)."""
         self._scene.build()
-        self._built = True
-
-    def _ready(self):
-        if not self._built:
-            self.build()
-        return self._scene
 
     def intersect(self, origins, directions, tnear=0.0, tfar=_np.inf):
         """Closest hits of rays o + t d with tnear <= t <= tfar: Hits (t, prim_id, u, v; .geom_id)."""
-        return Hits(*self._ready().intersect(_np.asarray(origins), _np.asarray(directions), tnear, tfar))
+        return Hits(*self._scene.intersect(_np.asarray(origins), _np.asarray(directions), tnear, tfar))
 
     def occluded(self, origins, directions, tnear=0.0, tfar=_np.inf):
         """Whether anything lies within [tnear, tfar] of each ray: a bool array."""
-        return self._ready().occluded(_np.asarray(origins), _np.asarray(directions), tnear, tfar)
+        return self._scene.occluded(_np.asarray(origins), _np.asarray(directions), tnear, tfar)
 
     @property
     def bounds(self):
         """(min, max) corners of everything in the scene, as two arrays of 3."""
-        b = self._ready().bounds
+        b = self._scene.bounds
         return _np.array(b[:3]), _np.array(b[3:])
 
     @property
     def primitive_count(self):
-        return self._ready().primitive_count
+        return self._scene.primitive_count
 
     @property
     def bytes(self):
         """Bytes of the acceleration structure."""
-        return self._ready().bytes
+        return self._scene.bytes
 
     @property
     def description(self):
-        return self._ready().description
+        return self._scene.description
 
 
 def render(scene_file, width=0, height=0, spp=0, integrator="", threads=0):

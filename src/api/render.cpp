@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 #include <tbb/global_control.h>
 
+#include "api/mxcsr_scope.h"
 #include "backends/wideray_structure.h"
 #include "core/error.h"
 #include "core/fp_mode.h"
@@ -34,6 +35,7 @@ RenderedImage renderSceneFile(const std::string& path, const RenderRequest& requ
         }
         std::optional<tbb::global_control> threads;
         if (request.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(request.threads));
+        MxcsrScope callerMode;  // saved before FlushToZeroScope sets this thread's mode, restored after
         FlushToZeroScope ftz;
         auto geometry = std::make_shared<const SceneGeometry>(scene);
         std::shared_ptr<const Structure> structure = buildWideBvh(geometry, StructureOptions{});
@@ -47,6 +49,8 @@ RenderedImage renderSceneFile(const std::string& path, const RenderRequest& requ
         return {image.width, image.height, std::move(image.pixels)};
     } catch (const InputError& e) {
         throw Error(e.what());
+    } catch (const std::length_error& e) {  // more primitives than the structure can address
+        throw Error(path + ": " + e.what());
     }
 }
 

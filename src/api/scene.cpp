@@ -225,32 +225,40 @@ uint32_t Scene::addSpheres(std::span<const float> centers, std::span<const float
 void Scene::build() {
     Impl& s = *impl_;
     s.invalidate();
-    for (const Impl::SharedMesh& m : s.shared) s.description.meshes[m.mesh] = copyMesh(m.positions, m.indices);
-    auto geometry = std::make_shared<const SceneGeometry>(s.description, Instancing::Auto);
-    // The engine's copy is all it needs from now on.
-    for (const Impl::SharedMesh& m : s.shared) s.description.meshes[m.mesh] = TriangleMesh{};
-
-    const std::vector<bool> twoLevel = twoLevelMeshes(s.description, Instancing::Auto);
-    s.flattenedMirrored.assign(s.description.instances.size(), 0);
-    for (size_t i = 0; i < s.description.instances.size(); ++i)
-        s.flattenedMirrored[i] = !twoLevel[s.description.instances[i].mesh] && mirrors(s.description.instances[i].transform);
-    s.kinds.clear();
-    for (uint32_t g = 0; g < geometry->size(); ++g) {
-        const Geometry& geom = (*geometry)[g];
-        s.kinds.push_back(geom.instances() ? Impl::Kind::Instances
-                          : dynamic_cast<const SphereGeometry*>(&geom) ? Impl::Kind::Spheres
-                                                                        : Impl::Kind::Triangles);
-    }
-
-    StructureOptions structureOptions;
-    structureOptions.bvhWidth = s.options.bvhWidth;
-    structureOptions.quality = s.options.quality == BuildQuality::High ? "high" : "fast";
     std::shared_ptr<const Structure> structure;
     try {
         MxcsrScope mode;
+        // Shared arrays are read at every build; the caller may have changed them since they were added.
+        for (const Impl::SharedMesh& m : s.shared) {
+            checkMesh(m.positions, m.indices);
+            s.description.meshes[m.mesh] = copyMesh(m.positions, m.indices);
+        }
+        auto geometry = std::make_shared<const SceneGeometry>(s.description, Instancing::Auto);
+        // The engine's copy is all it needs until the next build.
+        for (const Impl::SharedMesh& m : s.shared) s.description.meshes[m.mesh] = TriangleMesh{};
+
+        const std::vector<bool> twoLevel = twoLevelMeshes(s.description, Instancing::Auto);
+        s.flattenedMirrored.assign(s.description.instances.size(), 0);
+        for (size_t i = 0; i < s.description.instances.size(); ++i)
+            s.flattenedMirrored[i] = !twoLevel[s.description.instances[i].mesh] && mirrors(s.description.instances[i].transform);
+        s.kinds.clear();
+        for (uint32_t g = 0; g < geometry->size(); ++g) {
+            const Geometry& geom = (*geometry)[g];
+            s.kinds.push_back(geom.instances() ? Impl::Kind::Instances
+                              : dynamic_cast<const SphereGeometry*>(&geom) ? Impl::Kind::Spheres
+                                                                            : Impl::Kind::Triangles);
+        }
+
+        StructureOptions structureOptions;
+        structureOptions.bvhWidth = s.options.bvhWidth;
+        structureOptions.quality = s.options.quality == BuildQuality::High ? "high" : "fast";
         structure = buildWideBvh(std::move(geometry), structureOptions);
+    } catch (const InputError& e) {
+        rethrow(e);
     } catch (const std::length_error& e) {  // more primitives than the structure can address
         throw Error(std::string("build: ") + e.what());
+    } catch (const std::bad_alloc&) {
+        throw Error("build: out of memory");
     }
     s.structure = structure;
     try {

@@ -227,7 +227,7 @@ PbrtTexture pbrtTexture(const std::string& type, const std::string& valueType, c
     } else if (type == "fbm" || type == "marble") {
         Texture texture;
         texture.type = type == "fbm" ? TextureType::Fbm : TextureType::Marble;
-        texture.octaves = std::clamp(int(p.number("octaves", 8.0f)), 1, 16);
+        texture.octaves = int(std::clamp(p.number("octaves", 8.0f), 1.0f, 16.0f));
         texture.scale = p.number("scale", 1.0f);
         out.texture = texture;
         for (const PbrtParam& q : p.list) q.used = true;

@@ -25,6 +25,8 @@ namespace wideray {
 namespace {
 
 constexpr int kMaxIncludeDepth = 32;
+constexpr size_t kMaxIncludes = 100000;          // files read by Include/Import in one scene
+constexpr size_t kMaxInstances = 10'000'000;     // placed meshes, ObjectInstance copies included
 
 const std::set<std::string> kParamTypes = {"integer", "float",   "point",  "point2", "point3", "vector", "vector2",
                                            "vector3", "normal",  "normal3", "rgb",   "color",  "spectrum",
@@ -239,6 +241,7 @@ private:
         else if (d == "AreaLightSource") areaLightSource(line);
         else if (d == "ObjectBegin") {
             const std::string name = string(line);
+            if (currentObject_) fail(line, "ObjectBegin \"" + name + "\" inside another ObjectBegin");
             stack_.push_back(state_);
             currentObject_ = &objects_[name];
             currentObject_->clear();
@@ -251,7 +254,10 @@ private:
             const std::string name = string(line);
             auto it = objects_.find(name);
             if (it == objects_.end()) fail(line, "ObjectInstance \"" + name + "\" names no object");
-            for (const ObjectShape& s : it->second) place(s.mesh, state_.ctm * s.transform, s.material);
+            // pbrt has no nested instancing; allowing it here would also let an object grow by copies
+            // of itself.
+            if (currentObject_) fail(line, "ObjectInstance \"" + name + "\" inside ObjectBegin (nested instancing is not supported)");
+            for (const ObjectShape& s : it->second) place(line, s.mesh, state_.ctm * s.transform, s.material);
         } else if (d == "PixelFilter" || d == "Accelerator" || d == "MakeNamedMedium" || d == "MediumInterface" ||
                    d == "ColorSpace" || d == "Option" || d == "Attribute" || d == "ActiveTransform" ||
                    d == "TransformTimes") {
@@ -276,8 +282,12 @@ private:
     void include(int line, const std::string& directive) {
         const std::string name = string(line);
         if (files_.size() >= size_t(kMaxIncludeDepth)) fail(line, "Include nested more than 32 deep");
+        if (++includeCount_ > kMaxIncludes) fail(line, fmt::format("more than {} files included", kMaxIncludes));
         std::filesystem::path path = name;
         if (path.is_relative()) path = files_.back().folder / path;
+        std::error_code ec;
+        if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+            fail(line, directive + ": cannot open " + path.string() + " (not a regular file)");
         std::ifstream in(path, std::ios::binary);
         if (!in) fail(line, directive + ": cannot open " + path.string());
         std::ostringstream text;
@@ -361,7 +371,9 @@ private:
     }
 
     /// A shape's triangles placed in the world (or recorded in the object being defined).
-    void place(uint32_t mesh, const glm::mat4& transform, uint32_t material) {
+    void place(int line, uint32_t mesh, const glm::mat4& transform, uint32_t material) {
+        if (scene_.instances.size() + (currentObject_ ? currentObject_->size() : 0) >= kMaxInstances)
+            fail(line, fmt::format("more than {} shapes and object instances", kMaxInstances));
         if (currentObject_) {
             currentObject_->push_back({mesh, transform, material});
             return;
@@ -449,7 +461,7 @@ private:
         }
         if (state_.areaLight)
             warn(line, "arealight/mesh", "AreaLightSource on a mesh that is not one parallelogram: wideray's area lights are quads and spheres; the mesh is kept, not emitting");
-        place(meshIndex, state_.ctm, state_.material);
+        place(line, meshIndex, state_.ctm, state_.material);
         reportUnused(p, "Shape \"" + type + "\"");
     }
 
@@ -669,6 +681,7 @@ private:
     std::map<std::filesystem::path, uint32_t> plyMeshes_;
     std::map<std::string, std::vector<ObjectShape>> objects_;
     std::vector<ObjectShape>* currentObject_ = nullptr;
+    size_t includeCount_ = 0;
     std::set<std::string> warned_;
 };
 

@@ -2,6 +2,8 @@
 
 #include <cctype>
 #include <charconv>
+#include <cmath>
+#include <limits>
 
 #include "core/error.h"
 
@@ -62,6 +64,8 @@ PbrtToken PbrtTokenizer::scan() {
         const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
         if (ec != std::errc() || end != s.data() + s.size())
             throw InputError(file_, "line " + std::to_string(line), "'" + std::string(s) + "' is not a number");
+        if (!(std::abs(value) <= double(std::numeric_limits<float>::max())))
+            throw InputError(file_, "line " + std::to_string(line), "'" + std::string(s) + "' is not a finite 32-bit float");
         return {PbrtToken::Kind::Number, std::string(s), value, line};
     }
     throw InputError(file_, "line " + std::to_string(line), std::string("unexpected character '") + c + "'");

@@ -343,7 +343,10 @@ void readVertices(Reader& in, const PlyElement& element, size_t reserve, Triangl
         if (withUvs) mesh.uvs.emplace_back(values[U], values[V]);
         if (withColors) {
             const glm::vec3 c(values[R], values[G], values[B]);
-            mesh.colors.push_back(integerColors ? srgbToLinear(glm::clamp(c / 255.0f, 0.0f, 1.0f)) : c);
+            // Linear floats: clamped to [0, 1], NaN to 0.
+            auto unit = [](float x) { return x > 0.0f ? std::min(x, 1.0f) : 0.0f; };
+            mesh.colors.push_back(integerColors ? srgbToLinear(glm::clamp(c / 255.0f, 0.0f, 1.0f))
+                                                : glm::vec3(unit(c.x), unit(c.y), unit(c.z)));
         }
     }
 }

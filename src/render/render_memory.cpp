@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+
 #include <fmt/core.h>
 
 #include "core/error.h"
@@ -9,7 +11,9 @@
 namespace wideray {
 
 uint64_t renderBytes(const RenderOptions& options) {
-    const uint64_t pixels = uint64_t(options.width) * uint64_t(options.height);
+    const uint64_t pixels = uint64_t(std::max(options.width, 0)) * uint64_t(std::max(options.height, 0));
+    // Up to 2^62 pixels from two ints: saturate rather than wrap in the products below.
+    if (pixels > UINT64_MAX / 64) return UINT64_MAX;
     const uint64_t channels = options.aov == Aov::Depth ? 1 : 3;
     const uint64_t film = pixels * channels * sizeof(float) + (options.aov == Aov::Cost ? pixels * sizeof(uint32_t) : 0);
     return 2 * film;  // the film and the image finished from it

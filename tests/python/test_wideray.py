@@ -134,6 +134,41 @@ class Intersect(unittest.TestCase):
             np.testing.assert_array_equal(r, want)
 
 
+    def test_threads_add_while_others_trace(self):
+        # Additions (here instances far from the rays) rebuild the scene between traces, never under one.
+        vertices, faces = grid_mesh(20)
+        scene = wideray.Scene(vertices, faces)
+        origins, directions = rays_down(20_000, seed=5)
+        want = scene.intersect(origins, directions).prim_id
+        results, errors = [], []
+
+        def trace():
+            try:
+                for _ in range(5):
+                    results.append(scene.intersect(origins, directions).prim_id)
+            except Exception as e:  # reported below: a thread's exception would otherwise vanish
+                errors.append(e)
+
+        def add():
+            try:
+                for k in range(5):
+                    scene.add_instance(0, [[1, 0, 0, 100 + 10 * k], [0, 1, 0, 0], [0, 0, 1, 0]])
+                    scene.build()
+            except Exception as e:
+                errors.append(e)
+
+        threads = [threading.Thread(target=trace) for _ in range(3)] + [threading.Thread(target=add)]
+        for th in threads:
+            th.start()
+        for th in threads:
+            th.join()
+        self.assertEqual(errors, [])
+        self.assertEqual(len(results), 15)
+        for r in results:
+            np.testing.assert_array_equal(r, want)
+        self.assertEqual(scene.primitive_count, 6 * len(faces))
+
+
 class BadInput(unittest.TestCase):
     def setUp(self):
         self.vertices, self.faces = grid_mesh(2)
