@@ -665,29 +665,55 @@ TEST_F(MeshIoTest, PlyVertexColorsTintTheModel) {
 
 TEST_F(MeshIoTest, ShowcaseReadsGltfBaseColorImages) {
     // An image red in its top half, blue in the bottom; every uv of the triangle is (0.5, 0.1), which in
-    // glTF (v down the image) is near the top: red.
+    // glTF (v down the image) is near the top: red. The image as a file of its own, as a data URI and in
+    // a buffer view (as GLB files hold them).
     Image halves(8, 8, 3);
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) halves.at(x, y)[y < 4 ? 0 : 2] = 1.0f;
     writeImage(halves, dir_ / "halves.png", true);
+    std::ifstream pngFile(dir_ / "halves.png", std::ios::binary);
+    const std::string png((std::istreambuf_iterator<char>(pngFile)), std::istreambuf_iterator<char>());
     std::string buffer;
     for (float value : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) appendBinary(buffer, value, false);
     for (int i = 0; i < 3; ++i)
         for (float value : {0.5f, 0.1f}) appendBinary(buffer, value, false);
     for (uint16_t index : {0, 1, 2}) appendBinary(buffer, index, false);
-    const std::string gltf = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    buffer += std::string(2, '\0') + png;  // the image's view starts at 68
+    auto gltf = [&](const std::string& images, size_t imageViewLength) {
+        return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
   "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
   "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
-  "textures": [{"source": 0}], "images": [{"uri": "halves.png"}],
+  "textures": [{"source": 0}], "images": [)" + images + R"(],
   "accessors": [
     {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]},
     {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"},
     {"bufferView": 2, "componentType": 5123, "count": 3, "type": "SCALAR"}],
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 24},
-                  {"buffer": 0, "byteOffset": 60, "byteLength": 6}],
-  "buffers": [{"byteLength": 66, "uri": "data:application/octet-stream;base64,)" + base64(buffer) + "\"}]}";
-    const glm::vec3 color = modelColor(loadSceneOrMesh(write("textured.gltf", gltf), 48, 48, MeshFraming::Showcase));
-    EXPECT_GT(color.r, 4 * color.b);
+                  {"buffer": 0, "byteOffset": 60, "byteLength": 6}, {"buffer": 0, "byteOffset": 68, "byteLength": )" +
+               std::to_string(imageViewLength) + R"(}],
+  "buffers": [{"byteLength": )" + std::to_string(buffer.size()) + R"(, "uri": "data:application/octet-stream;base64,)" +
+               base64(buffer) + "\"}]}";
+    };
+    for (const std::string& images : {std::string(R"({"uri": "halves.png"})"),
+                                      R"({"uri": "data:image/png;base64,)" + base64(png) + "\"}",
+                                      std::string(R"({"bufferView": 3, "mimeType": "image/png"})")}) {
+        const SceneDescription scene = loadSceneOrMesh(write("textured.gltf", gltf(images, png.size())), 48, 48, MeshFraming::Showcase);
+        EXPECT_TRUE(scene.warnings.empty()) << scene.warnings[0];
+        const glm::vec3 color = modelColor(scene);
+        EXPECT_GT(color.r, 4 * color.b) << images;
+    }
+    // A view past the end of its buffer is refused by name; bytes that are no image leave the base color.
+    try {
+        loadSceneOrMesh(write("past.gltf", gltf(R"({"bufferView": 3, "mimeType": "image/png"})", png.size() + 1)), 48, 48,
+                        MeshFraming::Showcase);
+        ADD_FAILURE() << "a view past its buffer was read";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("images[0]: its bufferView runs past the end of its buffer"), std::string::npos) << e.what();
+    }
+    const SceneDescription broken = loadSceneOrMesh(write("broken.gltf", gltf(R"({"bufferView": 1, "mimeType": "image/png"})", png.size())),
+                                                    48, 48, MeshFraming::Showcase);
+    ASSERT_EQ(broken.warnings.size(), 1u);
+    EXPECT_NE(broken.warnings[0].find("broken.gltf:images[0].png"), std::string::npos) << broken.warnings[0];
 }
 
 } // namespace

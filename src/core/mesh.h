@@ -1,6 +1,7 @@
 #pragma once
 // An indexed triangle mesh as loaded from a file, before it is placed in a scene.
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,8 +14,11 @@ struct MeshMaterial {
     std::string name;
     glm::vec3 diffuse{0.8f};
     /// OBJ map_Kd, glTF baseColorTexture (an image file of its own) as written, relative to the mesh
-    /// file's folder; empty: none
+    /// file's folder; for an image inside the file, its name for messages ("model.glb:images[0].png").
+    /// Empty: none.
     std::string diffuseTexture;
+    /// The encoded image (PNG, JPEG) when it is inside the mesh file (a glTF data URI or buffer view).
+    std::shared_ptr<const std::vector<unsigned char>> diffuseTextureBytes;
 };
 
 struct TriangleMesh {

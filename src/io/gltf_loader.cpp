@@ -7,6 +7,7 @@
 #include <iostream>
 #include <limits>
 #include <optional>
+#include <span>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -19,10 +20,17 @@
 namespace wideray {
 namespace {
 
-/// wideray takes only base colors from glTF, so images are never decoded. tinygltf itself warns
-/// about (and tolerates) external image files it cannot find.
-bool keepImageUndecoded(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*,
-                        int, void*) {
+/// Images are decoded only when a material's base color uses them (mesh_framing.cpp): here the bytes
+/// of a data URI are kept as they are. Images in buffer views are copied from their buffer, checked,
+/// by SceneFlattener (tinygltf passes them without checking the view against its buffer), and
+/// external files are read by name. tinygltf itself warns about (and tolerates) missing files.
+bool keepImageEncoded(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+    // tinygltf leaves uri empty for data URIs (it names external files only).
+    if (image->bufferView < 0 && image->uri.empty() && size > 0) {
+        image->image.assign(bytes, bytes + size);
+        image->as_is = true;
+    }
     return true;
 }
 
@@ -171,19 +179,42 @@ public:
             const std::vector<double>& color = material.pbrMetallicRoughness.baseColorFactor;
             MeshMaterial meshMaterial{material.name.empty() ? "material" + std::to_string(m) : material.name};
             if (color.size() >= 3) meshMaterial.diffuse = glm::vec3(color[0], color[1], color[2]);
-            meshMaterial.diffuseTexture = externalImage(material.pbrMetallicRoughness.baseColorTexture.index);
+            setDiffuseImage(material.pbrMetallicRoughness.baseColorTexture.index, meshMaterial);
             mesh_.materials.push_back(meshMaterial);
         }
     }
 
-    /// The file of a texture's image when it is a file of its own (images inside the glTF, as data
-    /// URIs or buffer views, are not decoded); empty otherwise.
-    std::string externalImage(int textureIndex) const {
-        if (textureIndex < 0 || size_t(textureIndex) >= model_.textures.size()) return {};
+    /// The image of a texture: its file (relative to the glTF file's folder), or its bytes when it is
+    /// inside the file (decoded only if the material is rendered, mesh_framing.cpp).
+    void setDiffuseImage(int textureIndex, MeshMaterial& material) const {
+        if (textureIndex < 0 || size_t(textureIndex) >= model_.textures.size()) return;
         const int source = model_.textures[size_t(textureIndex)].source;
-        if (source < 0 || size_t(source) >= model_.images.size()) return {};
-        const std::string& uri = model_.images[size_t(source)].uri;
-        return uri.starts_with("data:") ? std::string() : uri;
+        if (source < 0 || size_t(source) >= model_.images.size()) return;
+        const tinygltf::Image& image = model_.images[size_t(source)];
+        const std::string where = "images[" + std::to_string(source) + "]";
+        std::span<const unsigned char> bytes;
+        if (image.bufferView >= 0) {
+            if (size_t(image.bufferView) >= model_.bufferViews.size())
+                throw InputError(file_, where, "no such bufferView " + std::to_string(image.bufferView));
+            const tinygltf::BufferView& view = model_.bufferViews[size_t(image.bufferView)];
+            if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size())
+                throw InputError(file_, where, "its bufferView names no buffer");
+            const std::vector<unsigned char>& buffer = model_.buffers[size_t(view.buffer)].data;
+            if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
+                throw InputError(file_, where, "its bufferView runs past the end of its buffer");
+            bytes = {buffer.data() + view.byteOffset, view.byteLength};
+        } else if (image.as_is) {
+            bytes = image.image;
+        } else {
+            material.diffuseTexture = image.uri;  // empty where a data URI could not be decoded
+            return;
+        }
+        // The format from the MIME type (tinygltf takes a data URI's from its prefix); without one,
+        // OpenImageIO tries every format it reads.
+        const std::string& type = image.mimeType;
+        const std::string extension = type == "image/png" ? ".png" : type == "image/jpeg" ? ".jpg" : "";
+        material.diffuseTexture = file_ + ":" + where + extension;
+        material.diffuseTextureBytes = std::make_shared<const std::vector<unsigned char>>(bytes.begin(), bytes.end());
     }
 
     void addNode(int nodeIndex, const glm::dmat4& parentTransform) {
@@ -331,7 +362,7 @@ namespace {
 template <class Load>
 TriangleMesh meshFromGltf(const std::string& file, size_t inputBytes, Load load) {
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(keepImageUndecoded, nullptr);
+    loader.SetImageLoader(keepImageEncoded, nullptr);
     tinygltf::Model model;
     std::string error, warning;
     bool loaded = false;

@@ -2,7 +2,9 @@
 #include <system_error>
 #include <unistd.h>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+#include <fmt/core.h>
 
 #include "core/error.h"
 #include "io/file_extension.h"
@@ -59,16 +61,38 @@ void writeImage(const Image& image, const std::filesystem::path& path, bool srgb
     }
 }
 
-Image readImage(const std::filesystem::path& path, bool srgb) {
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) throw InputError(path.string(), "", "cannot read image: " + OIIO::geterror());
+namespace {
+
+/// Pixels beyond which an image is refused before its pixels are allocated (3 GiB of RGB floats): a
+/// header may claim any size.
+constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;
+
+Image readOpened(OIIO::ImageInput* in, const std::string& name, bool srgb) {
+    if (!in) throw InputError(name, "", "cannot read image: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.nchannels > 4096 ||
+        uint64_t(spec.width) * uint64_t(spec.height) > kMaxImagePixels)
+        throw InputError(name, "", fmt::format("image of {}x{} with {} channels: wideray reads up to 2^28 pixels",
+                                               spec.width, spec.height, spec.nchannels));
     Image image(spec.width, spec.height, spec.nchannels);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
-        throw InputError(path.string(), "", "cannot read image: " + in->geterror());
+        throw InputError(name, "", "cannot read image: " + in->geterror());
     if (srgb && spec.format == OIIO::TypeDesc::UINT8)
         for (float& v : image.pixels) v = srgbToLinear(v);
     return image;
+}
+
+} // namespace
+
+Image readImage(const std::filesystem::path& path, bool srgb) {
+    auto in = OIIO::ImageInput::open(path.string());
+    return readOpened(in.get(), path.string(), srgb);
+}
+
+Image readImage(std::span<const unsigned char> bytes, const std::string& name, bool srgb) {
+    OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+    auto in = OIIO::ImageInput::open(name, nullptr, &memory);
+    return readOpened(in.get(), name, srgb);
 }
 
 } // namespace wideray

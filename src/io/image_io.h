@@ -1,6 +1,8 @@
 #pragma once
 // Image files through OpenImageIO: written whole or not at all.
 #include <filesystem>
+#include <span>
+#include <string>
 
 #include "core/image.h"
 
@@ -16,5 +18,9 @@ bool isFloatFormat(const std::filesystem::path& path);
 
 /// Reads an image as linear floats (sRGB decoded for 8-bit files when `srgb`). Throws InputError.
 Image readImage(const std::filesystem::path& path, bool srgb);
+
+/// Reads an image file held in memory (a PNG or JPEG inside a glTF file), its format named by
+/// `name`'s extension; `name` is what messages call it. Throws InputError.
+Image readImage(std::span<const unsigned char> bytes, const std::string& name, bool srgb);
 
 } // namespace wideray

@@ -59,18 +59,21 @@ SceneDescription showcaseMesh(TriangleMesh mesh, const std::filesystem::path& fi
     for (const MeshMaterial& m : mesh.materials) {
         Material material{m.name, MaterialType::Diffuse, m.diffuse};
         if (!m.diffuseTexture.empty() && !mesh.uvs.empty()) {
+            // An image inside the mesh file has a name for messages; one of its own is found by its path.
             std::filesystem::path path = m.diffuseTexture;
-            if (path.is_relative()) path = file.parent_path() / path;
+            if (!m.diffuseTextureBytes && path.is_relative()) path = file.parent_path() / path;
             auto& image = images[path];
             try {
-                if (!image) image = std::make_shared<const Image>(readImage(path, true));
+                if (!image)
+                    image = std::make_shared<const Image>(m.diffuseTextureBytes ? readImage(*m.diffuseTextureBytes, path.string(), true)
+                                                                               : readImage(path, true));
                 Texture texture;
                 texture.type = TextureType::Image;
                 texture.file = path;
                 texture.image = image;
                 material.colorTexture = texture;
             } catch (const InputError& e) {
-                scene.warnings.push_back(std::string(e.what()) + " (material '" + m.name + "'): its Kd color instead");
+                scene.warnings.push_back(std::string(e.what()) + " (material '" + m.name + "'): its own color instead");
             }
         }
         scene.materials.push_back(std::move(material));
