@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/environment.h"
 #include "core/mesh.h"
 #include "core/texture.h"
 
@@ -186,7 +187,8 @@ struct SceneDescription {
     Camera camera;
     std::optional<Animation> animation;  ///< a moving camera; none: one still image
     ImageSettings image;
-    glm::vec3 background{0.0f};
+    glm::vec3 background{0.0f};           ///< the radiance of every direction that leaves the scene...
+    std::optional<EnvironmentMap> environment;  ///< ...unless an environment map gives it per direction
     Fog fog;
     RenderSettings render;
     std::vector<Light> lights;

@@ -529,7 +529,8 @@ private:
         } else if (type == "infinite") {
             glm::vec3 radiance = pbrtColor(p, "L", glm::vec3(1.0f), context) * scale;
             if (const PbrtParam* map = p.find("filename"); map && map->strings.size() == 1) {
-                radiance = environmentAverage(line, map->strings[0]) * scale;
+                scene_.environment = environmentMap(line, map->strings[0], glm::vec3(scale));
+                if (!scene_.environment) radiance = glm::vec3(1.0f) * scale;
             }
             scene_.background = radiance;
             reportUnused(p, "LightSource \"infinite\"");
@@ -544,20 +545,22 @@ private:
         reportUnused(p, "LightSource \"" + type + "\"");
     }
 
-    glm::vec3 environmentAverage(int line, const std::string& name) {
+    /// pbrt's infinite light with an image: pbrt-v4 reads square images with its equal-area mapping,
+    /// pbrt-v3 any image as latitude-longitude. None where the image cannot be read.
+    std::optional<EnvironmentMap> environmentMap(int line, const std::string& name, glm::vec3 scale) {
         std::filesystem::path path = name;
         if (path.is_relative()) path = files_.back().folder / path;
         try {
-            const Image image = readImage(path, false);
-            glm::dvec3 sum(0.0);
-            for (size_t i = 0; i + 2 < image.pixels.size(); i += size_t(image.channels))
-                sum += glm::dvec3(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]);
-            const size_t n = image.pixels.size() / size_t(std::max(1, image.channels));
-            warn(line, "infinite/map", "LightSource \"infinite\": the environment map's average color lights the scene (a constant environment)");
-            return n ? glm::vec3(sum / double(n)) : glm::vec3(0.0f);
+            EnvironmentMap map;
+            map.file = path;
+            map.image = std::make_shared<const Image>(readImage(path, true));
+            map.mapping = map.image->width == map.image->height ? EnvironmentMapping::EqualArea : EnvironmentMapping::LatLong;
+            map.fromWorld = glm::inverse(glm::mat3(state_.ctm));
+            map.scale = scale;
+            return map;
         } catch (const InputError& e) {
             warn(line, "infinite/missing", std::string("LightSource \"infinite\": ") + e.what() + "; a constant white environment instead");
-            return glm::vec3(1.0f);
+            return std::nullopt;
         }
     }
 
@@ -656,6 +659,7 @@ private:
                                  glm::translate(glm::mat4(1.0f), -position);
         for (MeshInstance& instance : scene_.instances) instance.transform = mirror * instance.transform;
         for (AnalyticObject& object : scene_.analytics) object.transform = mirror * object.transform;
+        if (scene_.environment) scene_.environment->fromWorld = scene_.environment->fromWorld * glm::mat3(mirror);
         for (Light& light : scene_.lights) {
             light.position = glm::vec3(mirror * glm::vec4(light.position, 1.0f));
             light.direction = glm::vec3(mirror * glm::vec4(light.direction, 0.0f));

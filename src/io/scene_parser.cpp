@@ -36,11 +36,12 @@ public:
 
     SceneDescription read(const Json& json) {
         const Node root{json, ""};
-        checkKeys(root, {"camera", "animation", "image", "background", "fog", "render", "materials", "lights", "meshes",
-                         "objects"});
+        checkKeys(root, {"camera", "animation", "image", "background", "environment", "fog", "render", "materials", "lights",
+                         "meshes", "objects"});
         readCameraAndAnimation(root);
         if (root.has("image")) readImage(root["image"]);
         if (root.has("background")) scene_.background = color(root["background"]);
+        if (root.has("environment")) readEnvironment(root["environment"]);
         if (root.has("fog")) readFog(root["fog"]);
         if (root.has("render")) readRender(root["render"]);
         if (root.has("materials")) readMaterials(root["materials"]);
@@ -170,6 +171,21 @@ private:
         if (n.has("width")) scene_.image.width = integer(n["width"], 1, 65536);
         if (n.has("height")) scene_.image.height = integer(n["height"], 1, 65536);
         if (n.has("spp")) scene_.image.samplesPerPixel = integer(n["spp"], 1, 1 << 20);
+    }
+
+    /// An environment map: its image, how directions map to it (by default equal-area for square
+    /// images, latitude-longitude otherwise, with +z up), a scale, and a transform from map to world.
+    void readEnvironment(const Node& n) {
+        checkKeys(n, {"file", "mapping", "scale", "transform"});
+        require(n, "file");
+        EnvironmentMap map;
+        map.image = textureImage(n["file"], true, map.file);
+        map.mapping = n.has("mapping") ? named(n["mapping"], kEnvironmentMappings, "mapping")
+                      : map.image->width == map.image->height ? EnvironmentMapping::EqualArea
+                                                               : EnvironmentMapping::LatLong;
+        if (n.has("scale")) map.scale = n["scale"].value.is_number() ? glm::vec3(nonNegative(n["scale"])) : color(n["scale"]);
+        if (n.has("transform")) map.fromWorld = glm::inverse(glm::mat3(transform(n["transform"])));
+        scene_.environment = std::move(map);
     }
 
     void readFog(const Node& n) {

@@ -22,6 +22,8 @@ inline const std::vector<std::pair<std::string, AnalyticShape>> kAnalyticShapes 
 inline const std::vector<std::pair<std::string, CsgOperation>> kCsgOperations = {
     {"union", CsgOperation::Union}, {"intersection", CsgOperation::Intersection},
     {"difference", CsgOperation::Difference}, {"xor", CsgOperation::Xor}};
+inline const std::vector<std::pair<std::string, EnvironmentMapping>> kEnvironmentMappings = {
+    {"latlong", EnvironmentMapping::LatLong}, {"equal_area", EnvironmentMapping::EqualArea}};
 inline const std::vector<std::string> kMaterialTypes = {"diffuse", "plastic", "mirror", "conductor", "dielectric"};
 inline const std::vector<std::pair<std::string, TextureType>> kTextureTypes = {
     {"checker", TextureType::Checker}, {"noise", TextureType::Noise},   {"fbm", TextureType::Fbm},

@@ -155,6 +155,10 @@ std::string writeScene(const SceneDescription& scene) {
     }
     root["image"] = {{"width", scene.image.width}, {"height", scene.image.height}, {"spp", scene.image.samplesPerPixel}};
     root["background"] = array(scene.background);
+    if (const std::optional<EnvironmentMap>& map = scene.environment)
+        root["environment"] = {{"file", map->file.string()}, {"mapping", nameOf(kEnvironmentMappings, map->mapping)},
+                               {"scale", array(map->scale)},
+                               {"transform", {{"matrix", matrixJson(glm::mat4(glm::inverse(map->fromWorld)))}}}};
     root["fog"] = {{"density", scene.fog.density}, {"color", array(scene.fog.color)}};
     root["render"] = {{"integrator", nameOf(kIntegrators, scene.render.integrator)}, {"max_depth", scene.render.maxDepth}, {"min_throughput", scene.render.minThroughput},
                       {"polarized", scene.render.polarized}};

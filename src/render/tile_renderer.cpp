@@ -5,6 +5,7 @@
 
 #include "core/random.h"
 #include "shading/beer.h"
+#include "shading/environment.h"
 #include "shading/path_vertex.h"
 
 namespace wideray {
@@ -134,7 +135,9 @@ void TileRenderer::shadeBounce(TileBuffers& buf) const {
         path.throughputS *= transmittance;
         path.throughputP *= transmittance;
         if (!hit.valid()) {
-            film_.addSample(path.pixelX, path.pixelY, path.throughput() * scene_.background);
+            const glm::vec3 direction(path.ray.dx, path.ray.dy, path.ray.dz);
+            const glm::vec3 sky = scene_.environment ? environmentRadiance(*scene_.environment, direction) : scene_.background;
+            film_.addSample(path.pixelX, path.pixelY, path.throughput() * sky);
             continue;
         }
         buf.shading.push_back({uint32_t(i), geometry_.surface(path.ray, hit), rng});
