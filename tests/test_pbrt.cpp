@@ -3,6 +3,7 @@
 // reference, and the shared Bitterli scenes.
 #include <fstream>
 
+#include <fmt/core.h>
 #include <gtest/gtest.h>
 
 #include "backends/wideray_structure.h"
@@ -184,6 +185,43 @@ TEST(PbrtParser, LightsAndTheirEmittingSide) {
     EXPECT_EQ(s.lights[3].type, LightType::Sphere);
     EXPECT_FLOAT_EQ(s.lights[3].radius, 0.25f);
     EXPECT_TRUE(s.meshes.empty());  // lights are not also geometry
+}
+
+TEST(PbrtParser, AreaLightsOnTrianglesAndTwoSided) {
+    // A fan of three triangles wound toward +y: three triangle lights facing up; two-sided, six, in
+    // opposite pairs. A mesh of 40 triangles stays a mesh, not emitting, and says so.
+    const std::string fan = R"(Shape "trianglemesh" "integer indices" [0 1 2 0 2 3 0 3 4]
+          "point P" [0 0 0  0 0 1  1 0 1  1 0 0  0.5 0 -1])";
+    const SceneDescription s = world("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2]\n" + fan +
+                                     "\nAttributeEnd\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1] \"bool twosided\" true\n" +
+                                     fan + "\nAttributeEnd");
+    ASSERT_EQ(s.lights.size(), 9u);
+    float area = 0;
+    for (int i = 0; i < 3; ++i) {
+        const Light& light = s.lights[size_t(i)];
+        EXPECT_EQ(light.type, LightType::Triangle);
+        EXPECT_EQ(light.color, glm::vec3(2.0f));
+        const glm::vec3 n = glm::cross(light.edgeU, light.edgeV);
+        EXPECT_GT(n.y, 0.0f) << i;  // pbrt's winding: (p0 - p2) x (p1 - p2) = +y, mirrored world aside
+        area += 0.5f * glm::length(n);
+    }
+    EXPECT_NEAR(area, 1.5f, 1e-5f);
+    for (int i = 3; i < 9; i += 2)
+        EXPECT_LT(glm::dot(glm::cross(s.lights[size_t(i)].edgeU, s.lights[size_t(i)].edgeV),
+                           glm::cross(s.lights[size_t(i + 1)].edgeU, s.lights[size_t(i + 1)].edgeV)),
+                  0.0f);
+    EXPECT_TRUE(s.meshes.empty());
+    std::string indices, points;
+    for (int i = 0; i < 40; ++i) {
+        indices += fmt::format("{} {} {} ", 3 * i, 3 * i + 1, 3 * i + 2);
+        points += fmt::format("{} 0 0  {} 0 1  {} 1 0  ", i, i, i);
+    }
+    const SceneDescription big = world("AreaLightSource \"diffuse\"\nShape \"trianglemesh\" \"integer indices\" [" + indices +
+                                       "] \"point P\" [" + points + "]");
+    EXPECT_TRUE(big.lights.empty());
+    ASSERT_EQ(big.meshes.size(), 1u);
+    ASSERT_EQ(big.warnings.size(), 1u);
+    EXPECT_NE(big.warnings[0].find("more than 32 triangles"), std::string::npos) << big.warnings[0];
 }
 
 TEST(PbrtParser, ObjectInstancesAndIncludes) {

@@ -45,15 +45,18 @@ struct ImageSettings {
     int samplesPerPixel = 1;
 };
 
-enum class LightType { Point, Directional, Quad, Sphere };
+enum class LightType { Point, Directional, Quad, Triangle, Sphere };
 
 struct Light {
     LightType type = LightType::Point;
+    bool isArea() const { return type == LightType::Quad || type == LightType::Triangle || type == LightType::Sphere; }
+    /// Quads and triangles emit on the side edgeU x edgeV points to.
+    bool isPlanar() const { return type == LightType::Quad || type == LightType::Triangle; }
     glm::vec3 color{1.0f};
     float intensity = 1.0f;
-    glm::vec3 position{0.0f};            ///< point, sphere: center; quad: one corner
+    glm::vec3 position{0.0f};            ///< point, sphere: center; quad, triangle: one corner
     glm::vec3 direction{0.0f, -1.0f, 0.0f};  ///< directional: the direction light travels
-    glm::vec3 edgeU{1.0f, 0.0f, 0.0f};   ///< quad: corner + s*edgeU + t*edgeV, s,t in [0,1]
+    glm::vec3 edgeU{1.0f, 0.0f, 0.0f};   ///< quad: corner + s*edgeU + t*edgeV, s,t in [0,1] (triangle: s+t <= 1)
     glm::vec3 edgeV{0.0f, 0.0f, 1.0f};
     float radius = 0.0f;                 ///< sphere light radius
     int samples = 1;                     ///< shadow rays per shading point (area lights)

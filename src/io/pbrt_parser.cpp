@@ -27,6 +27,7 @@ namespace {
 constexpr int kMaxIncludeDepth = 32;
 constexpr size_t kMaxIncludes = 100000;          // files read by Include/Import in one scene
 constexpr size_t kMaxInstances = 10'000'000;     // placed meshes, ObjectInstance copies included
+constexpr size_t kMaxTriangleLights = 32;        // triangles of one mesh under an AreaLightSource
 
 const std::set<std::string> kParamTypes = {"integer", "float",   "point",  "point2", "point3", "vector", "vector2",
                                            "vector3", "normal",  "normal3", "rgb",   "color",  "spectrum",
@@ -449,7 +450,7 @@ private:
             return;
         }
         if (meshIndex == kInvalidId) {
-            if (state_.areaLight && quadLight(mesh)) {
+            if (state_.areaLight && meshLights(mesh)) {
                 reportUnused(p, "Shape \"" + type + "\"");
                 return;
             }
@@ -460,7 +461,9 @@ private:
             if (type == "plymesh") plyMeshes_[std::filesystem::path(files_.back().folder / p.find("filename")->strings[0])] = meshIndex;
         }
         if (state_.areaLight)
-            warn(line, "arealight/mesh", "AreaLightSource on a mesh that is not one parallelogram: wideray's area lights are quads and spheres; the mesh is kept, not emitting");
+            warn(line, "arealight/mesh", fmt::format("AreaLightSource on a mesh of more than {} triangles (or an instanced "
+                                                     "one): wideray samples every light at every point; the mesh is kept, not emitting",
+                                                     kMaxTriangleLights));
         place(line, meshIndex, state_.ctm, state_.material);
         reportUnused(p, "Shape \"" + type + "\"");
     }
@@ -577,52 +580,75 @@ private:
         light.radiance = pbrtColor(p, "L", glm::vec3(1.0f), context) * p.number("scale", 1.0f);
         const PbrtParam* twoSided = p.find("twosided");
         light.twoSided = twoSided && !twoSided->strings.empty() && twoSided->strings[0] == "true";
-        if (light.twoSided) warn(line, "arealight/twosided", "AreaLightSource: two-sided lights emit on one side only in wideray");
         light.line = line;
         state_.areaLight = light;
         reportUnused(p, "AreaLightSource \"diffuse\"");
     }
 
-    /// A mesh of one parallelogram (two triangles, four corners) as a quad light; false otherwise.
-    bool quadLight(const TriangleMesh& mesh) {
-        if (mesh.triangles.size() != 2 || mesh.positions.size() != 4) return false;
+    /// A mesh under an AreaLightSource as lights: one parallelogram (two triangles, four corners) as a
+    /// quad light, a few triangles as a triangle light each; false for larger meshes (every light is
+    /// sampled at every shading point).
+    bool meshLights(const TriangleMesh& mesh) {
         std::vector<glm::vec3> world;
         for (const glm::vec3& v : mesh.positions) world.push_back(glm::vec3(state_.ctm * glm::vec4(v, 1.0f)));
-        // The corner shared by neither triangle's diagonal: find a corner whose two neighbours span the rest.
-        const glm::uvec3 a = mesh.triangles[0];
-        for (int k = 0; k < 3; ++k) {
-            const uint32_t corner = a[k], u = a[(k + 1) % 3], v = a[(k + 2) % 3];
-            const glm::vec3 edgeU = world[u] - world[corner], edgeV = world[v] - world[corner];
-            const uint32_t fourth = 6 - corner - u - v;
-            const glm::vec3 predicted = world[corner] + edgeU + edgeV;
-            const float size = glm::length(edgeU) + glm::length(edgeV);
-            if (glm::length(predicted - world[fourth]) > 1e-4f * size) continue;
-            // pbrt emits on the side of the shading normals where given, else the triangle's winding.
-            glm::vec3 normal = glm::cross(world[mesh.triangles[0].x] - world[mesh.triangles[0].z],
-                                          world[mesh.triangles[0].y] - world[mesh.triangles[0].z]);
-            const bool swaps = glm::determinant(glm::mat3(state_.ctm)) < 0.0f;
-            if (!mesh.normals.empty()) {
-                const glm::vec3 ns = glm::transpose(glm::inverse(glm::mat3(state_.ctm))) * mesh.normals[0];
-                if (glm::dot(normal, ns) < 0.0f) normal = -normal;
-            } else if (state_.reverseOrientation != swaps) {
-                normal = -normal;
+        if (mesh.triangles.size() == 2 && mesh.positions.size() == 4) {
+            // The corner shared by neither triangle's diagonal: its two neighbours span the rest.
+            const glm::uvec3 a = mesh.triangles[0];
+            for (int k = 0; k < 3; ++k) {
+                const uint32_t corner = a[k], u = a[(k + 1) % 3], v = a[(k + 2) % 3];
+                const glm::vec3 edgeU = world[u] - world[corner], edgeV = world[v] - world[corner];
+                const uint32_t fourth = 6 - corner - u - v;
+                const float size = glm::length(edgeU) + glm::length(edgeV);
+                if (glm::length(world[corner] + edgeU + edgeV - world[fourth]) > 1e-4f * size) continue;
+                addPlanarLight(LightType::Quad, world[corner], edgeU, edgeV, emittingNormal(mesh, world, a), 4);
+                return true;
             }
-            Light light;
-            light.type = LightType::Quad;
-            light.position = world[corner];
-            light.edgeU = edgeU;
-            light.edgeV = edgeV;
-            if (glm::dot(glm::cross(edgeU, edgeV), normal) < 0.0f) std::swap(light.edgeU, light.edgeV);
-            light.color = state_.areaLight->radiance;
-            light.intensity = 1.0f;
-            light.samples = 4;
-            scene_.lights.push_back(light);
-            return true;
         }
-        return false;
+        if (mesh.triangles.size() > kMaxTriangleLights) return false;
+        for (const glm::uvec3& t : mesh.triangles) {
+            const glm::vec3 edgeU = world[t.y] - world[t.x], edgeV = world[t.z] - world[t.x];
+            if (glm::length(glm::cross(edgeU, edgeV)) == 0.0f) continue;
+            addPlanarLight(LightType::Triangle, world[t.x], edgeU, edgeV, emittingNormal(mesh, world, t), 1);
+        }
+        return true;
+    }
+
+    /// The side pbrt's area light on a triangle emits toward: its geometric normal, turned toward the
+    /// shading normals where the mesh has them, else flipped by ReverseOrientation and by transforms
+    /// that mirror.
+    glm::vec3 emittingNormal(const TriangleMesh& mesh, const std::vector<glm::vec3>& world, glm::uvec3 t) const {
+        glm::vec3 normal = glm::cross(world[t.x] - world[t.z], world[t.y] - world[t.z]);
+        const bool swaps = glm::determinant(glm::mat3(state_.ctm)) < 0.0f;
+        if (!mesh.normals.empty()) {
+            const glm::vec3 shading = glm::transpose(glm::inverse(glm::mat3(state_.ctm))) *
+                                      (mesh.normals[t.x] + mesh.normals[t.y] + mesh.normals[t.z]);
+            if (glm::dot(normal, shading) < 0.0f) normal = -normal;
+        } else if (state_.reverseOrientation != swaps) {
+            normal = -normal;
+        }
+        return normal;
+    }
+
+    /// A quad or triangle light emitting toward `normal`, and toward the other side too for a
+    /// two-sided light (a second light with its edges swapped).
+    void addPlanarLight(LightType type, glm::vec3 corner, glm::vec3 edgeU, glm::vec3 edgeV, glm::vec3 normal, int samples) {
+        Light light;
+        light.type = type;
+        light.position = corner;
+        light.edgeU = edgeU;
+        light.edgeV = edgeV;
+        if (glm::dot(glm::cross(edgeU, edgeV), normal) < 0.0f) std::swap(light.edgeU, light.edgeV);
+        light.color = state_.areaLight->radiance;
+        light.intensity = 1.0f;
+        light.samples = samples;
+        scene_.lights.push_back(light);
+        if (!state_.areaLight->twoSided) return;
+        std::swap(light.edgeU, light.edgeV);
+        scene_.lights.push_back(light);
     }
 
     void sphereLight(int line, float radius) {
+        if (state_.areaLight->twoSided) warn(line, "arealight/twosided", "AreaLightSource: a two-sided sphere light emits outward only");
         const glm::mat3 m(state_.ctm);
         const float sx = glm::length(m[0]), sy = glm::length(m[1]), sz = glm::length(m[2]);
         if (std::abs(sx - sy) > 1e-4f * sx || std::abs(sx - sz) > 1e-4f * sx)

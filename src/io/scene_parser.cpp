@@ -362,11 +362,13 @@ private:
             {"point", {LightType::Point, {"position"}}},
             {"directional", {LightType::Directional, {"direction"}}},
             {"quad", {LightType::Quad, {"corner", "edge_u", "edge_v"}}},
+            {"triangle", {LightType::Triangle, {"corner", "edge_u", "edge_v"}}},
             {"sphere", {LightType::Sphere, {"center", "radius"}}},
         };
         auto found = requiredKeysOf.find(type);
         if (found == requiredKeysOf.end()) {
-            const std::vector<std::string> types = {"point", "directional", "quad", "sphere"};
+            std::vector<std::string> types;
+            for (const auto& entry : requiredKeysOf) types.push_back(entry.first);
             const std::string hint = suggestion(type, types);
             fail(n["type"].path, "unknown light type \"" + type + "\"" + (hint.empty() ? " (expected " + joined(types) + ")" : hint));
         }
@@ -375,8 +377,7 @@ private:
         const std::vector<std::string>& required = found->second.second;
         std::vector<std::string> keys = {"type", "color", "intensity"};
         keys.insert(keys.end(), required.begin(), required.end());
-        const bool isArea = light.type == LightType::Quad || light.type == LightType::Sphere;
-        if (isArea) keys.push_back("samples");
+        if (light.isArea()) keys.push_back("samples");
         checkKeys(n, keys);
         for (const std::string& key : required) require(n, key);
 
@@ -387,6 +388,7 @@ private:
         case LightType::Point: light.position = vec3(n["position"]); break;
         case LightType::Directional: light.direction = unitLength(nonZeroVec3(n["direction"])); break;
         case LightType::Quad:
+        case LightType::Triangle:
             light.position = vec3(n["corner"]);
             light.edgeU = nonZeroVec3(n["edge_u"]);
             light.edgeV = nonZeroVec3(n["edge_v"]);

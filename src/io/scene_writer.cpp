@@ -48,7 +48,8 @@ Json lightJson(const Light& light) {
     case LightType::Point: j = {{"type", "point"}, {"position", array(light.position)}}; break;
     case LightType::Directional: j = {{"type", "directional"}, {"direction", array(light.direction)}}; break;
     case LightType::Quad:
-        j = {{"type", "quad"}, {"corner", array(light.position)}, {"edge_u", array(light.edgeU)},
+    case LightType::Triangle:
+        j = {{"type", light.type == LightType::Quad ? "quad" : "triangle"}, {"corner", array(light.position)}, {"edge_u", array(light.edgeU)},
              {"edge_v", array(light.edgeV)}, {"samples", light.samples}};
         break;
     case LightType::Sphere:

@@ -22,8 +22,11 @@ void addSample(const glm::vec3& position, const glm::vec3& toLight, float distan
 }
 
 float lightArea(const Light& light) {
-    return light.type == LightType::Quad ? glm::length(glm::cross(light.edgeU, light.edgeV))
-                                         : 4.0f * float(M_PI) * light.radius * light.radius;
+    switch (light.type) {
+    case LightType::Quad: return glm::length(glm::cross(light.edgeU, light.edgeV));
+    case LightType::Triangle: return 0.5f * glm::length(glm::cross(light.edgeU, light.edgeV));
+    default: return 4.0f * float(M_PI) * light.radius * light.radius;
+    }
 }
 
 /// The density over solid angle of a point sampled uniformly over an area, seen at `distance` under
@@ -55,15 +58,18 @@ void sampleLights(const std::vector<Light>& lights, const glm::vec3& position, f
             addSample(position, -glm::normalize(light.direction), INFINITY, power, epsilon, out);
             break;
         case LightType::Quad:
+        case LightType::Triangle:
         case LightType::Sphere: {
             const int n = std::clamp(light.samples, 1, std::max(1, areaSampleLimit));
             for (int i = 0; i < n; ++i) {
-                const glm::vec2 u = glm::min(stratifiedPoint(i, n, rng), glm::vec2(1.0f));
+                glm::vec2 u = glm::min(stratifiedPoint(i, n, rng), glm::vec2(1.0f));
                 glm::vec3 p, lightNormal;
                 const float area = lightArea(light);
-                if (light.type == LightType::Quad) {
+                if (light.isPlanar()) {
+                    // The half of the square beyond the diagonal folds onto the triangle: uniform there too.
+                    if (light.type == LightType::Triangle && u.x + u.y > 1.0f) u = glm::vec2(1.0f) - u;
                     p = light.position + u.x * light.edgeU + u.y * light.edgeV;
-                    lightNormal = glm::cross(light.edgeU, light.edgeV) / area;
+                    lightNormal = glm::normalize(glm::cross(light.edgeU, light.edgeV));
                 } else {
                     lightNormal = uniformSphere(u.x, u.y);
                     p = light.position + light.radius * lightNormal;
@@ -72,7 +78,7 @@ void sampleLights(const std::vector<Light>& lights, const glm::vec3& position, f
                 float dist = glm::length(d);
                 if (dist <= 2.0f * epsilon) continue;
                 glm::vec3 l = d / dist;
-                // Quads emit on the side edge_u x edge_v points to; spheres outward.
+                // Quads and triangles emit on the side edge_u x edge_v points to; spheres outward.
                 float cosLight = std::max(0.0f, -glm::dot(lightNormal, l));
                 if (cosLight <= 0.0f) continue;
                 addSample(position, l, dist, power * (cosLight * area / (dist * dist * float(n))), epsilon, out,
@@ -88,22 +94,25 @@ void sampleLights(const std::vector<Light>& lights, const glm::vec3& position, f
 void lightCrossings(const std::vector<Light>& lights, const Ray& ray, float tmax, std::vector<LightCrossing>& out) {
     const glm::vec3 o(ray.ox, ray.oy, ray.oz), d(ray.dx, ray.dy, ray.dz);
     for (const Light& light : lights) {
-        if (light.type != LightType::Quad && light.type != LightType::Sphere) continue;
+        if (!light.isArea()) continue;
         const int count = std::max(1, light.samples);
         const float area = lightArea(light);
         float t;
         glm::vec3 normal;
-        if (light.type == LightType::Quad) {
-            normal = glm::cross(light.edgeU, light.edgeV) / area;
+        if (light.isPlanar()) {
+            const glm::vec3 cross = glm::cross(light.edgeU, light.edgeV);
+            const float parallelogram = glm::length(cross);
+            normal = cross / parallelogram;
             const float facing = glm::dot(d, normal);
-            if (!(facing < 0.0f)) continue;  // parallel, or from behind: quads emit on one side
+            if (!(facing < 0.0f)) continue;  // parallel, or from behind: they emit on one side
             t = glm::dot(light.position - o, normal) / facing;
             if (!(t > ray.tnear && t < tmax)) continue;
             const glm::vec3 p = o + t * d - light.position;
             // p = s edgeU + r edgeV, solved in the plane (the quad may be a parallelogram).
-            const float s = glm::dot(glm::cross(p, light.edgeV), normal) / area;
-            const float r = glm::dot(glm::cross(light.edgeU, p), normal) / area;
+            const float s = glm::dot(glm::cross(p, light.edgeV), normal) / parallelogram;
+            const float r = glm::dot(glm::cross(light.edgeU, p), normal) / parallelogram;
             if (s < 0.0f || s > 1.0f || r < 0.0f || r > 1.0f) continue;
+            if (light.type == LightType::Triangle && s + r > 1.0f) continue;
         } else {
             // The near side of the sphere, seen from outside.
             const glm::vec3 oc = o - light.position;
