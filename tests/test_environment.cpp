@@ -108,21 +108,31 @@ TEST(Environment, JsonSceneShowsItsMapWhereRaysLeave) {
     const glm::vec3 red = pixelColor(plain);
     EXPECT_NEAR(red.r, 0.5f, 1e-3f);
     EXPECT_NEAR(red.g, 0.0f, 1e-3f);
+    const SceneDescription turned = scene(R"(, "transform": {"rotate": {"axis": [1, 2, 3], "degrees": 37}}, "mapping": "latlong")");
     const glm::vec3 white = pixelColor(scene(R"(, "transform": {"rotate": {"axis": [0, 0, 1], "degrees": 90}})"));
     EXPECT_NEAR(white.r, 0.5f, 1e-3f);
     EXPECT_NEAR(white.b, 0.5f, 1e-3f);
-    // Written and read back, the map is the same.
-    const SceneDescription again = parseScene(writeScene(plain), dir.path() / "again.json");
-    ASSERT_TRUE(again.environment);
-    EXPECT_EQ(again.environment->fromWorld, plain.environment->fromWorld);
-    EXPECT_EQ(again.environment->scale, plain.environment->scale);
-    // Errors name the key.
-    try {
-        parseScene(R"({"environment": {"file": "quarters.exr", "mapping": "cube"}, "objects": []})", dir.path() / "bad.json");
-        ADD_FAILURE() << "an unknown mapping was accepted";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("environment.mapping"), std::string::npos) << e.what();
+    // Written and read back, the map is the same, bit for bit also when turned.
+    for (const SceneDescription* original : {&plain, &turned}) {
+        const SceneDescription again = parseScene(writeScene(*original), dir.path() / "again.json");
+        ASSERT_TRUE(again.environment);
+        EXPECT_EQ(again.environment->toWorld, original->environment->toWorld);
+        EXPECT_EQ(again.environment->fromWorld, original->environment->fromWorld);
+        EXPECT_EQ(again.environment->scale, original->environment->scale);
+        EXPECT_EQ(again.environment->mapping, original->environment->mapping);
     }
+    // Errors name the key.
+    auto expectError = [&](const std::string& environment, const std::string& where, const std::string& what) {
+        try {
+            parseScene(R"({"environment": )" + environment + R"(, "objects": []})", dir.path() / "bad.json");
+            ADD_FAILURE() << environment << " was accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+        }
+    };
+    expectError(R"({"file": "quarters.exr", "mapping": "cube"})", "environment.mapping", "cube");
+    expectError(R"({"file": "quarters.exr", "mapping": "equal_area"})", "environment.mapping", "square");
 }
 
 TEST(Environment, PbrtInfiniteLightKeepsPbrtsSides) {
@@ -150,6 +160,32 @@ AttributeEnd
     EXPECT_GT(right.g, 0.9f);
     EXPECT_LT(right.r + right.b, 0.1f);
     EXPECT_GT(left.r + left.g + left.b, 2.7f);
+}
+
+TEST(Environment, PbrtV3MapnameIsScaledByItsRadiance) {
+    // pbrt-v3 names the image "mapname" and multiplies it by L and scale; of several infinite lights
+    // the last one lights the scene, with a warning.
+    TempDir dir;
+    writeQuarters(dir.path());
+    const std::filesystem::path file = dir.path() / "sky.pbrt";
+    std::ofstream(file) << R"(LookAt 0 0 0  1 1 0  0 0 1
+Camera "perspective" "float fov" 10
+WorldBegin
+LightSource "infinite" "rgb L" [0 1 0]
+LightSource "infinite" "string mapname" "quarters.exr" "rgb L" [0.5 0.25 1] "float scale" 2
+AttributeBegin
+  Translate 0 0 -50
+  Shape "sphere" "float radius" 1
+AttributeEnd
+)";
+    const SceneDescription scene = loadSceneOrMesh(file);
+    ASSERT_TRUE(scene.environment);
+    const glm::vec3 center = pixelColor(scene);
+    EXPECT_NEAR(center.r, 1.0f, 1e-3f);
+    EXPECT_NEAR(center.g + center.b, 0.0f, 1e-3f);
+    ASSERT_EQ(scene.warnings.size(), 1u);
+    EXPECT_NE(scene.warnings[0].find(":line 5:"), std::string::npos) << scene.warnings[0];
+    EXPECT_NE(scene.warnings[0].find("several infinite lights"), std::string::npos) << scene.warnings[0];
 }
 
 } // namespace

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <tuple>
 #include <random>
+#include <limits>
 #include <thread>
 #include <vector>
 
@@ -263,6 +264,15 @@ TEST(Library, SharedArraysAreReadByBuild) {
     const std::vector<Ray> rays = randomRays(500, 4);
     const std::vector<Hit> expected = singleHits(copied, rays);
     for (size_t i = 0; i < rays.size(); ++i) expectSameHit(shared.intersect(rays[i]), expected[i], i, "shared");
+    // Checked again at every build, the error names the build and the mesh.
+    positions[7] = std::numeric_limits<float>::quiet_NaN();
+    try {
+        shared.build();
+        ADD_FAILURE() << "a shared mesh with NaN was built";
+    } catch (const wideray::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("build: shared mesh (geomId 0): positions[7] (vertex 2) is nan"), std::string::npos)
+            << e.what();
+    }
 }
 
 TEST(Library, TracesFromTheCallersThreads) {

@@ -117,7 +117,9 @@ TEST(MotionBlur, AMovingBallIsWhereItsTimePutsIt) {
         float t, u, v;
         const bool hit = geometry.intersect(r, 0, r.tfar, t, u, v);
         ASSERT_EQ(hit, std::fabs(x) < 1.0f) << time;
-        if (hit) EXPECT_NEAR(t, 5.0f - std::sqrt(1.0f - x * x), 1e-5f) << time;
+        if (hit) {
+            EXPECT_NEAR(t, 5.0f - std::sqrt(1.0f - x * x), 1e-5f) << time;
+        }
     }
     EXPECT_LE(geometry.primitiveBounds(0).lower.x, -3.0f);
     EXPECT_GE(geometry.primitiveBounds(0).upper.x, 3.0f);

@@ -137,20 +137,21 @@ Scene& Scene::operator=(Scene&&) noexcept = default;
 
 namespace {
 
-void checkMesh(std::span<const float> positions, std::span<const uint32_t> indices) {
+/// Throws naming `where` (the call, or the build and the shared mesh it reads) unless the arrays are a mesh.
+void checkMesh(std::span<const float> positions, std::span<const uint32_t> indices, std::string_view where) {
     if (positions.size() % 3 != 0)
-        throw Error(fmt::format("addTriangleMesh: positions holds {} floats, not 3 per vertex", positions.size()));
+        throw Error(fmt::format("{}: positions holds {} floats, not 3 per vertex", where, positions.size()));
     if (indices.size() % 3 != 0)
-        throw Error(fmt::format("addTriangleMesh: indices holds {} values, not 3 per triangle", indices.size()));
+        throw Error(fmt::format("{}: indices holds {} values, not 3 per triangle", where, indices.size()));
     const size_t vertices = positions.size() / 3;
     if (vertices > kInvalidId || indices.size() / 3 > kInvalidId)
-        throw Error("addTriangleMesh: more than 2^32 - 1 vertices or triangles");
+        throw Error(fmt::format("{}: more than 2^32 - 1 vertices or triangles", where));
     for (size_t i = 0; i < positions.size(); ++i)
         if (!std::isfinite(positions[i]))
-            throw Error(fmt::format("addTriangleMesh: positions[{}] (vertex {}) is {}", i, i / 3, positions[i]));
+            throw Error(fmt::format("{}: positions[{}] (vertex {}) is {}", where, i, i / 3, positions[i]));
     for (size_t i = 0; i < indices.size(); ++i)
         if (indices[i] >= vertices)
-            throw Error(fmt::format("addTriangleMesh: indices[{}] (triangle {}) is {}, but the mesh has {} vertices", i,
+            throw Error(fmt::format("{}: indices[{}] (triangle {}) is {}, but the mesh has {} vertices", where, i,
                                     i / 3, indices[i], vertices));
 }
 
@@ -166,7 +167,7 @@ TriangleMesh copyMesh(std::span<const float> positions, std::span<const uint32_t
 } // namespace
 
 uint32_t Scene::addTriangleMesh(std::span<const float> positions, std::span<const uint32_t> indices, Sharing sharing) {
-    checkMesh(positions, indices);
+    checkMesh(positions, indices, "addTriangleMesh");
     Impl& s = *impl_;
     const uint32_t mesh = uint32_t(s.description.meshes.size());
     if (sharing == Sharing::Copy) {
@@ -230,7 +231,7 @@ void Scene::build() {
         MxcsrScope mode;
         // Shared arrays are read at every build; the caller may have changed them since they were added.
         for (const Impl::SharedMesh& m : s.shared) {
-            checkMesh(m.positions, m.indices);
+            checkMesh(m.positions, m.indices, fmt::format("build: shared mesh (geomId {})", s.meshGeomIds[m.mesh]));
             s.description.meshes[m.mesh] = copyMesh(m.positions, m.indices);
         }
         auto geometry = std::make_shared<const SceneGeometry>(s.description, Instancing::Auto);

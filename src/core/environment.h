@@ -21,8 +21,15 @@ struct EnvironmentMap {
     std::filesystem::path file;
     std::shared_ptr<const Image> image;
     EnvironmentMapping mapping = EnvironmentMapping::LatLong;
-    glm::mat3 fromWorld{1.0f};  ///< world directions into the map's space
     glm::vec3 scale{1.0f};      ///< multiplies every pixel
+    glm::mat3 toWorld{1.0f};    ///< the map's directions into the world, as given to orient()
+    glm::mat3 fromWorld{1.0f};  ///< its inverse: world directions into the map's space
+
+    /// Turns the map by an invertible linear transform from its space into the world's.
+    void orient(const glm::mat3& mapToWorld) {
+        toWorld = mapToWorld;
+        fromWorld = glm::inverse(mapToWorld);
+    }
 };
 
 } // namespace wideray

@@ -63,16 +63,19 @@ void writeImage(const Image& image, const std::filesystem::path& path, bool srgb
 
 namespace {
 
-/// Pixels beyond which an image is refused before its pixels are allocated (3 GiB of RGB floats): a
-/// header may claim any size.
+/// Pixels and values (pixels times channels) beyond which an image is refused before its pixels are
+/// allocated (3 GiB of floats): a header may claim any size.
 constexpr uint64_t kMaxImagePixels = uint64_t(1) << 28;
+constexpr uint64_t kMaxImageValues = 3 * kMaxImagePixels;
 
 Image readOpened(OIIO::ImageInput* in, const std::string& name, bool srgb) {
     if (!in) throw InputError(name, "", "cannot read image: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.nchannels > 4096 ||
-        uint64_t(spec.width) * uint64_t(spec.height) > kMaxImagePixels)
-        throw InputError(name, "", fmt::format("image of {}x{} with {} channels: wideray reads up to 2^28 pixels",
+    const uint64_t pixels = uint64_t(std::max(spec.width, 0)) * uint64_t(std::max(spec.height, 0));
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.nchannels > 4096 || pixels > kMaxImagePixels ||
+        pixels * uint64_t(spec.nchannels) > kMaxImageValues)
+        throw InputError(name, "", fmt::format("image of {}x{} with {} channels: wideray reads up to 2^28 pixels "
+                                               "and 3 x 2^28 values (3 GiB of floats)",
                                                spec.width, spec.height, spec.nchannels));
     Image image(spec.width, spec.height, spec.nchannels);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))

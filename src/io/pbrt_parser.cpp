@@ -530,11 +530,15 @@ private:
             if (glm::length(dir) == 0.0f) fail(line, "LightSource \"distant\": from and to coincide");
             light.direction = glm::normalize(glm::vec3(state_.ctm * glm::vec4(dir, 0.0f)));
         } else if (type == "infinite") {
-            glm::vec3 radiance = pbrtColor(p, "L", glm::vec3(1.0f), context) * scale;
-            if (const PbrtParam* map = p.find("filename"); map && map->strings.size() == 1) {
-                scene_.environment = environmentMap(line, map->strings[0], glm::vec3(scale));
-                if (!scene_.environment) radiance = glm::vec3(1.0f) * scale;
-            }
+            // pbrt-v3 names the image "mapname" and multiplies it by L; pbrt-v4 names it "filename".
+            const glm::vec3 radiance = pbrtColor(p, "L", glm::vec3(1.0f), context) * scale;
+            if (sawInfiniteLight_)
+                warn(line, "infinite/several", "several infinite lights; only the last one lights the scene");
+            sawInfiniteLight_ = true;
+            scene_.environment.reset();
+            const PbrtParam* map = p.find("filename");
+            if (!map) map = p.find("mapname");
+            if (map && map->strings.size() == 1) scene_.environment = environmentMap(line, map->strings[0], radiance);
             scene_.background = radiance;
             reportUnused(p, "LightSource \"infinite\"");
             return;
@@ -553,16 +557,21 @@ private:
     std::optional<EnvironmentMap> environmentMap(int line, const std::string& name, glm::vec3 scale) {
         std::filesystem::path path = name;
         if (path.is_relative()) path = files_.back().folder / path;
+        const glm::mat3 toWorld(state_.ctm);
+        if (!(std::abs(glm::determinant(toWorld)) > 0.0f)) {
+            warn(line, "infinite/singular", "LightSource \"infinite\": its transform is singular; a constant environment instead");
+            return std::nullopt;
+        }
         try {
             EnvironmentMap map;
             map.file = path;
             map.image = std::make_shared<const Image>(readImage(path, true));
             map.mapping = map.image->width == map.image->height ? EnvironmentMapping::EqualArea : EnvironmentMapping::LatLong;
-            map.fromWorld = glm::inverse(glm::mat3(state_.ctm));
+            map.orient(toWorld);
             map.scale = scale;
             return map;
         } catch (const InputError& e) {
-            warn(line, "infinite/missing", std::string("LightSource \"infinite\": ") + e.what() + "; a constant white environment instead");
+            warn(line, "infinite/missing", std::string("LightSource \"infinite\": ") + e.what() + "; a constant environment of its L instead");
             return std::nullopt;
         }
     }
@@ -685,7 +694,7 @@ private:
                                  glm::translate(glm::mat4(1.0f), -position);
         for (MeshInstance& instance : scene_.instances) instance.transform = mirror * instance.transform;
         for (AnalyticObject& object : scene_.analytics) object.transform = mirror * object.transform;
-        if (scene_.environment) scene_.environment->fromWorld = scene_.environment->fromWorld * glm::mat3(mirror);
+        if (scene_.environment) scene_.environment->orient(glm::mat3(mirror) * scene_.environment->toWorld);
         for (Light& light : scene_.lights) {
             light.position = glm::vec3(mirror * glm::vec4(light.position, 1.0f));
             light.direction = glm::vec3(mirror * glm::vec4(light.direction, 0.0f));
@@ -704,6 +713,7 @@ private:
     glm::mat4 cameraFromWorld_{1.0f};
     float fov_ = 90.0f;
     bool sawCamera_ = false;
+    bool sawInfiniteLight_ = false;
     std::map<std::string, glm::mat4> namedSpaces_;
     std::map<std::string, uint32_t> namedMaterials_;
     std::map<std::string, PbrtTexture> textures_;

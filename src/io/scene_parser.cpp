@@ -184,7 +184,10 @@ private:
                       : map.image->width == map.image->height ? EnvironmentMapping::EqualArea
                                                                : EnvironmentMapping::LatLong;
         if (n.has("scale")) map.scale = n["scale"].value.is_number() ? glm::vec3(nonNegative(n["scale"])) : color(n["scale"]);
-        if (n.has("transform")) map.fromWorld = glm::inverse(glm::mat3(transform(n["transform"])));
+        if (map.mapping == EnvironmentMapping::EqualArea && map.image->width != map.image->height)
+            fail(n["mapping"].path, "\"equal_area\" needs a square image, but " + map.file.filename().string() + " is " +
+                                        std::to_string(map.image->width) + "x" + std::to_string(map.image->height));
+        if (n.has("transform")) map.orient(glm::mat3(transform(n["transform"])));
         scene_.environment = std::move(map);
     }
 

@@ -159,7 +159,7 @@ std::string writeScene(const SceneDescription& scene) {
     if (const std::optional<EnvironmentMap>& map = scene.environment)
         root["environment"] = {{"file", map->file.string()}, {"mapping", nameOf(kEnvironmentMappings, map->mapping)},
                                {"scale", array(map->scale)},
-                               {"transform", {{"matrix", matrixJson(glm::mat4(glm::inverse(map->fromWorld)))}}}};
+                               {"transform", {{"matrix", matrixJson(glm::mat4(map->toWorld))}}}};
     root["fog"] = {{"density", scene.fog.density}, {"color", array(scene.fog.color)}};
     root["render"] = {{"integrator", nameOf(kIntegrators, scene.render.integrator)}, {"max_depth", scene.render.maxDepth}, {"min_throughput", scene.render.minThroughput},
                       {"polarized", scene.render.polarized}};

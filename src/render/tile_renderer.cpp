@@ -22,7 +22,11 @@ Bounds3f boundsWithLights(const Bounds3f& objects, const SceneDescription& scene
         if (light.type == LightType::Directional) continue;
         b.grow(light.position - glm::vec3(light.radius));
         b.grow(light.position + glm::vec3(light.radius));
-        if (light.isPlanar()) b.grow(light.position + light.edgeU + light.edgeV);
+        if (light.isPlanar()) {
+            b.grow(light.position + light.edgeU);
+            b.grow(light.position + light.edgeV);
+        }
+        if (light.type == LightType::Quad) b.grow(light.position + light.edgeU + light.edgeV);
     }
     return b;
 }

@@ -37,6 +37,7 @@ glm::vec3 environmentRadiance(const EnvironmentMap& map, glm::vec3 direction) {
     const glm::vec2 uv = environmentUv(map.mapping, map.fromWorld * direction);
     // Pixel centers at half-integers; longitude wraps around in a lat-long map, the rest clamps.
     const float fx = uv.x * float(image.width) - 0.5f, fy = uv.y * float(image.height) - 0.5f;
+    if (!std::isfinite(fx) || !std::isfinite(fy)) return glm::vec3(0.0f);
     const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
     const float tx = fx - float(x0), ty = fy - float(y0);
     const bool wrapX = map.mapping == EnvironmentMapping::LatLong;

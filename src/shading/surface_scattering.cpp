@@ -97,7 +97,8 @@ DielectricCrossing crossDielectric(const SceneDescription& scene, const MediumSt
                                    const glm::vec3& direction, const glm::vec3& normal) {
     const Material& material = scene.materials[sp.material];
     const bool entering = glm::dot(direction, sp.geometricNormal) < 0.0f;
-    DielectricCrossing c{.beyond = media};
+    DielectricCrossing c{};
+    c.beyond = media;
     float etaI, etaT;
     if (entering) {
         etaI = indexOfRefraction(scene, media);
