@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "core/bounds.h"
+#include "core/default_init_allocator.h"
 
 namespace wideray {
 
@@ -14,9 +15,12 @@ struct alignas(16) BuildRef {
     glm::vec3 lower;
     uint32_t prim;  ///< the primitive's index in the builder's input
     glm::vec3 upper;
-    uint32_t unused = 0;
+    uint32_t unused;
 };
 static_assert(sizeof(BuildRef) == 32);
+
+/// The builders' reference arrays, sized without zeroing (they are filled in parallel).
+using BuildRefs = UninitializedVector<BuildRef>;
 
 /// A box in two SSE registers; the fourth lane is not part of it (it may hold anything).
 struct BuildBox {

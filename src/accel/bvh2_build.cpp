@@ -11,7 +11,7 @@ BoxPlanes boxPlanes(const Bounds3f& b) {
 Bvh2 buildBvh2(const PrimitiveTable& table) {
     Bvh2 out;
     if (table.size() == 0) return out;
-    std::vector<BuildRef> refs(table.size());
+    BuildRefs refs(table.size());
     for (uint32_t i = 0; i < table.size(); ++i) refs[i] = makeBuildRef(table.box(i), i);
     BvhBuildConfig config;
     config.maxLeafSize = 4;

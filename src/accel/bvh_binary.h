@@ -68,7 +68,7 @@ constexpr int kMaxBvhDepth = 64;
 /// Builds over one reference per primitive (at least one; ref.prim its index). At high quality the
 /// splitter clips primitives (without one the build is the fast one). Parallel with oneTBB; the
 /// tree's shape does not depend on the thread count.
-BinaryBvh buildBinaryBvh(std::vector<BuildRef> refs, const BvhBuildConfig& config,
+BinaryBvh buildBinaryBvh(BuildRefs refs, const BvhBuildConfig& config,
                          const TriangleSplitter* splitter = nullptr);
 
 } // namespace wideray

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 
@@ -70,7 +71,7 @@ void reduceRange(uint32_t begin, uint32_t end, T& result, Make make, Add add) {
 
 class Builder {
 public:
-    Builder(std::vector<BuildRef>& refs, const BvhBuildConfig& config, const TriangleSplitter* splitter, BinaryBvh& out)
+    Builder(BuildRefs& refs, const BvhBuildConfig& config, const TriangleSplitter* splitter, BinaryBvh& out)
         : refs_(refs), config_(config), splitter_(config.quality == BuildQuality::High ? splitter : nullptr), out_(out) {}
 
     void build() {
@@ -87,7 +88,15 @@ public:
         rootHalfArea_ = root.bounds.halfArea();
         buildNode(0, root, 0);
         out_.nodes.assign(nodes_, nodes_ + nodeCount_);
-        gatherLeaves();
+        if (capacity == primCount) {
+            // Without spare capacity the leaves tile the references in depth-first order already.
+            out_.primIndices.resize(primCount);
+            tbb::parallel_for(tbb::blocked_range<uint32_t>(0, primCount, 1u << 16), [&](const tbb::blocked_range<uint32_t>& r) {
+                for (uint32_t i = r.begin(); i != r.end(); ++i) out_.primIndices[i] = refs_[i].prim;
+            });
+        } else {
+            gatherLeaves();
+        }
     }
 
 private:
@@ -128,6 +137,10 @@ private:
         const uint32_t count = range.size();
         if (count == 1) return false;
         const bool fitsLeaf = count <= uint32_t(config_.maxLeafSize);
+        // One block's leaf costs intersectionCost, any split at least traversalCost: where that is no
+        // less, the SAH below would choose the leaf, so it is chosen without binning.
+        if (fitsLeaf && count <= blockSize() && config_.traversalCost >= config_.intersectionCost && config_.intersectionCost >= 0)
+            return false;
         if (config_.split == SplitMethod::Median || depth >= kMedianDepth) {
             if (fitsLeaf) return false;
             splitAtMedian(range, left, right);
@@ -300,7 +313,7 @@ private:
         node.first = first;
     }
 
-    std::vector<BuildRef>& refs_;
+    BuildRefs& refs_;
     const BvhBuildConfig& config_;
     const TriangleSplitter* splitter_;
     BinaryBvh& out_;
@@ -312,7 +325,7 @@ private:
 
 } // namespace
 
-BinaryBvh buildBinaryBvh(std::vector<BuildRef> refs, const BvhBuildConfig& config, const TriangleSplitter* splitter) {
+BinaryBvh buildBinaryBvh(BuildRefs refs, const BvhBuildConfig& config, const TriangleSplitter* splitter) {
     assert(!refs.empty());
     assert(config.binCount >= 2 && config.binCount <= kMaxObjectBins);
     assert(config.spatialBinCount >= 2 && config.spatialBinCount <= kMaxSpatialBins);

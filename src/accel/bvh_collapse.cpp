@@ -65,7 +65,7 @@ public:
 private:
     /// Of a wide subtree: its wide nodes; of a wide leaf: nothing. Both: the leaf items.
     struct Size {
-        uint32_t nodes = 0, items = 0;
+        uint32_t nodes, items;
     };
 
     template <class F>
@@ -132,7 +132,7 @@ private:
     const Shape& shape_;
     LeafWriter& leaves_;
     WideBvh<N>& out_;
-    std::vector<Size> sizes_;  ///< by binary node, for those that become wide nodes or leaves
+    UninitializedVector<Size> sizes_;  ///< by binary node, for those that become wide nodes or leaves
 };
 
 /// The greedy collapse: each wide node takes the binary node's children and keeps opening the one

@@ -137,8 +137,8 @@ private:
 
 } // namespace
 
-std::vector<BuildRef> triangleRefs(const TriangleMesh& mesh) {
-    std::vector<BuildRef> refs(mesh.triangles.size());
+BuildRefs triangleRefs(const TriangleMesh& mesh) {
+    BuildRefs refs(mesh.triangles.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, refs.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
             const glm::uvec3& t = mesh.triangles[i];
@@ -237,7 +237,7 @@ void SceneAccel<N>::buildInstances(uint32_t geomId, const InstanceGeometry& inst
 template <int N>
 WideBvh<N> SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
     // User primitives and instances, each bounded by its geometry.
-    std::vector<BuildRef> buildRefs;
+    BuildRefs buildRefs;
     std::vector<PrimRef> refs;
     for (uint32_t g = 0; g < geometry_->size(); ++g) {
         const Geometry& item = (*geometry_)[g];

@@ -68,6 +68,6 @@ private:
 };
 
 /// One build reference per triangle of the mesh, the builder's input.
-std::vector<BuildRef> triangleRefs(const TriangleMesh& mesh);
+BuildRefs triangleRefs(const TriangleMesh& mesh);
 
 } // namespace wideray
