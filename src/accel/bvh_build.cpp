@@ -319,8 +319,10 @@ private:
     BinaryBvh& out_;
     std::unique_ptr<std::byte[]> nodeStorage_;
     BinaryNode* nodes_ = nullptr;
-    std::atomic<uint32_t> nodeCount_{0};
     float rootHalfArea_ = 0;
+    /// Taken by every inner node on every thread: on a cache line of its own, so that its writes do
+    /// not evict the members above from the other threads' caches.
+    alignas(64) std::atomic<uint32_t> nodeCount_{0};
 };
 
 } // namespace
