@@ -15,7 +15,11 @@ struct alignas(16) BuildRef {
     glm::vec3 lower;
     uint32_t prim;  ///< the primitive's index in the builder's input
     glm::vec3 upper;
-    uint32_t unused;
+    /// The reference's object bin along x, y and z (a byte each) from the last binning of its node,
+    /// which that node's partition reads instead of binning it again.
+    uint32_t bins;
+
+    int binAlong(int axis) const { return int(bins >> (8 * axis) & 0xffu); }
 };
 static_assert(sizeof(BuildRef) == 32);
 
@@ -67,7 +71,7 @@ struct BuildBox {
         _mm_store_ps(&r.lower.x, lower);
         _mm_store_ps(&r.upper.x, upper);
         r.prim = prim;
-        r.unused = 0;
+        r.bins = 0;
     }
 
     static float lane(__m128 v, int i) {

@@ -41,7 +41,8 @@ struct BvhBuildConfig {
     CollapseMethod collapse = CollapseMethod::Sah;
     int binCount = 32;
     int maxLeafSize = 8;
-    /// Leaves are intersected in blocks of this many primitives, so the SAH charges whole blocks.
+    /// Leaves are intersected in blocks of this many primitives (a power of two), so the SAH charges
+    /// whole blocks.
     int blockSize = 1;
     float traversalCost = 1.0f;
     float intersectionCost = 1.0f;

@@ -101,6 +101,7 @@ public:
 
 private:
     uint32_t blockSize() const { return uint32_t(config_.blockSize); }
+    uint32_t blockShift() const { return uint32_t(__builtin_ctz(blockSize())); }
 
     BuildRange measured(uint32_t begin, uint32_t end, uint32_t capacityEnd) const {
         RangeBounds b;
@@ -150,7 +151,7 @@ private:
         const ObjectBinMapping objectMapping(range.centroids, count, config_.binCount);
         ObjectBins objectBins(objectMapping.count);
         binObjects(range, objectMapping, objectBins);
-        const ObjectSplit object = objectBins.bestSplit(objectMapping, blockSize());
+        const ObjectSplit object = objectBins.bestSplit(objectMapping, blockShift());
         SpatialSplit spatial;
         std::optional<SpatialBinMapping> spatialMapping;
         if (splitter_ && range.spare() > 0 && count >= uint32_t(config_.spatialMinRefs)) {
@@ -160,7 +161,7 @@ private:
                 spatialMapping.emplace(range.bounds, config_.spatialBinCount);
                 SpatialBins spatialBins(spatialMapping->count);
                 binSpatially(range, *spatialMapping, spatialBins);
-                spatial = spatialBins.bestSplit(*spatialMapping, blockSize());
+                spatial = spatialBins.bestSplit(*spatialMapping, blockShift());
                 if (spatial.axis >= 0 && spatial.leftCount + spatial.rightCount - count > range.spare()) spatial = {};
             }
         }
@@ -173,12 +174,12 @@ private:
                                     : std::numeric_limits<float>::infinity();
         if (fitsLeaf && leafCost <= splitCost) return false;
         if (spatial.cost < object.cost) splitSpatially(range, spatial, *spatialMapping, left, right);
-        else if (object.axis >= 0) splitObjects(range, object, objectMapping, left, right);
+        else if (object.axis >= 0) splitObjects(range, object, left, right);
         else splitAtMedian(range, left, right);
         return true;
     }
 
-    void binObjects(const BuildRange& range, const ObjectBinMapping& mapping, ObjectBins& bins) const {
+    void binObjects(const BuildRange& range, const ObjectBinMapping& mapping, ObjectBins& bins) {
         reduceRange(
             range.begin, range.end, bins, [&] { return ObjectBins(mapping.count); },
             [&](ObjectBins& bins, uint32_t from, uint32_t to) { bins.add(refs_.data() + from, to - from, mapping); });
@@ -192,23 +193,23 @@ private:
             });
     }
 
-    /// In place, the children's bounds gathered on the way.
-    void splitObjects(const BuildRange& range, const ObjectSplit& split, const ObjectBinMapping& mapping,
-                      BuildRange& left, BuildRange& right) {
+    /// In place, by the bins the binning left in the references. The children's boxes are the
+    /// split's (the unions of their bins); their centroid bounds are gathered on the way.
+    void splitObjects(const BuildRange& range, const ObjectSplit& split, BuildRange& left, BuildRange& right) {
         BuildRef* refs = refs_.data();
-        RangeBounds l, r;
-        auto goesLeft = [&](const BuildRef& ref) { return mapping.binOf(ref, split.axis) <= split.bin; };
+        BuildBox l, r;
+        auto goesLeft = [&](const BuildRef& ref) { return ref.binAlong(split.axis) <= split.bin; };
         uint32_t i = range.begin, j = range.end;
         while (true) {
-            while (i < j && goesLeft(refs[i])) l.add(refs, i, i + 1), ++i;
-            while (i < j && !goesLeft(refs[j - 1])) r.add(refs, j - 1, j), --j;
+            while (i < j && goesLeft(refs[i])) l.grow(BuildBox(refs[i]).center2()), ++i;
+            while (i < j && !goesLeft(refs[j - 1])) r.grow(BuildBox(refs[j - 1]).center2()), --j;
             if (i >= j) break;
             std::swap(refs[i], refs[j - 1]);
-            l.add(refs, i, i + 1), ++i;
-            r.add(refs, j - 1, j), --j;
+            l.grow(BuildBox(refs[i]).center2()), ++i;
+            r.grow(BuildBox(refs[j - 1]).center2()), --j;
         }
-        left = {range.begin, i, i, l.bounds, l.centroids};
-        right = {i, range.end, range.end, r.bounds, r.centroids};
+        left = {range.begin, i, i, split.left, l};
+        right = {i, range.end, range.end, split.right, r};
     }
 
     void splitAtMedian(const BuildRange& range, BuildRange& left, BuildRange& right) {
@@ -331,6 +332,7 @@ BinaryBvh buildBinaryBvh(BuildRefs refs, const BvhBuildConfig& config, const Tri
     assert(!refs.empty());
     assert(config.binCount >= 2 && config.binCount <= kMaxObjectBins);
     assert(config.spatialBinCount >= 2 && config.spatialBinCount <= kMaxSpatialBins);
+    assert(config.blockSize > 0 && (config.blockSize & (config.blockSize - 1)) == 0);
     BinaryBvh bvh;
     Builder(refs, config, splitter, bvh).build();
     return bvh;

@@ -12,35 +12,74 @@ namespace wideray {
 constexpr int kMaxObjectBins = 64;
 constexpr size_t kInterleaveThreshold = 256;
 
-/// The SAH cost of `count` primitives in a box of half area `halfArea`, intersected in blocks.
-inline float sideCost(float halfArea, uint32_t count, uint32_t blockSize) {
-    return halfArea * float((count + blockSize - 1) / blockSize);
+/// The plane of least SAH cost that sweepPlanes found (axis -1: none with references on both sides).
+struct BestPlane {
+    int axis = -1;
+    int bin = 0;  ///< the plane is after this bin
+    float cost = std::numeric_limits<float>::infinity();  ///< the sum of both sides' SAH costs
+    uint32_t leftCount = 0, rightCount = 0;
+};
+
+/// The SAH costs of three boxes (the three axes' sides, in lanes x, y, z) holding `counts` primitives,
+/// intersected in blocks of 1 << blockShift: half area times blocks, as BuildBox::halfArea adds it.
+inline __m128 sideCosts(const BuildBox (&sides)[3], __m128i counts, uint32_t blockShift) {
+    __m128 x = _mm_sub_ps(sides[0].upper, sides[0].lower), y = _mm_sub_ps(sides[1].upper, sides[1].lower),
+           z = _mm_sub_ps(sides[2].upper, sides[2].lower), w = _mm_setzero_ps();
+    _MM_TRANSPOSE4_PS(x, y, z, w);  // x: the three boxes' extents along x, and so on
+    const __m128 area = _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, y), _mm_mul_ps(y, z)), _mm_mul_ps(z, x));
+    const __m128 zero = _mm_setzero_ps();
+    const __m128 empty = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(x, zero), _mm_cmplt_ps(y, zero)), _mm_cmplt_ps(z, zero));
+    const __m128i blocks =
+        _mm_srl_epi32(_mm_add_epi32(counts, _mm_set1_epi32((1 << blockShift) - 1)), _mm_cvtsi32_si128(int(blockShift)));
+    return _mm_mul_ps(_mm_andnot_ps(empty, area), _mm_cvtepi32_ps(blocks));
 }
 
-/// Sweeps the planes between the bins along one axis: visit(bin, cost, left, right) for each plane
-/// after `bin` with references on both sides, left and right their counts (leftAdd(b), rightAdd(b):
-/// what bin b adds to each side), cost the SAH cost of both sides.
-template <int MaxBins, class LeftAdd, class RightAdd, class Visit>
-void sweepPlanes(const AxisBinBoxes<MaxBins>& boxes, int axis, int bins, uint32_t blockSize, LeftAdd leftAdd,
-                 RightAdd rightAdd, Visit visit) {
-    std::array<float, MaxBins> rightCost;
-    std::array<uint32_t, MaxBins> rightCount;
-    BuildBox acc;
-    uint32_t n = 0;
+/// Sweeps the planes between the bins along the axes in `axes` (bit a: axis a), all three at once in
+/// the lanes of SSE registers. leftAdd(b) and rightAdd(b) return per axis (__m128i lanes x, y, z) what
+/// bin b adds to the count of the side it is on. Among the planes with references on both sides, the
+/// one of least cost wins; ties go to the lower axis, then to the lower bin.
+template <int MaxBins, class LeftAdd, class RightAdd>
+BestPlane sweepPlanes(const AxisBinBoxes<MaxBins>& boxes, int bins, int axes, uint32_t blockShift, LeftAdd leftAdd,
+                      RightAdd rightAdd) {
+    __m128 rightCost[MaxBins];
+    __m128i rightCount[MaxBins];
+    BuildBox sides[3];
+    __m128i n = _mm_setzero_si128();
     for (int b = bins - 1; b > 0; --b) {
-        acc.grow(boxes.box(axis, b));
-        n += rightAdd(b);
+        for (int a = 0; a < 3; ++a) sides[a].grow(boxes.box(a, b));
+        n = _mm_add_epi32(n, rightAdd(b));
         rightCount[b] = n;
-        rightCost[b] = sideCost(acc.halfArea(), n, blockSize);
+        rightCost[b] = sideCosts(sides, n, blockShift);
     }
-    acc = BuildBox();
-    n = 0;
+    for (BuildBox& side : sides) side = BuildBox();
+    n = _mm_setzero_si128();
+    const __m128i zero = _mm_setzero_si128();
+    const __m128i axisLanes = _mm_cmpgt_epi32(_mm_and_si128(_mm_set1_epi32(axes), _mm_setr_epi32(1, 2, 4, 8)), zero);
+    __m128 bestCost = _mm_set1_ps(std::numeric_limits<float>::infinity());
+    __m128i bestBin = _mm_set1_epi32(-1), bestLeft = zero, bestRight = zero;
     for (int b = 0; b < bins - 1; ++b) {
-        acc.grow(boxes.box(axis, b));
-        n += leftAdd(b);
-        if (n == 0 || rightCount[b + 1] == 0) continue;
-        visit(b, sideCost(acc.halfArea(), n, blockSize) + rightCost[b + 1], n, rightCount[b + 1]);
+        for (int a = 0; a < 3; ++a) sides[a].grow(boxes.box(a, b));
+        n = _mm_add_epi32(n, leftAdd(b));
+        const __m128 cost = _mm_add_ps(sideCosts(sides, n, blockShift), rightCost[b + 1]);
+        const __m128i bothSides = _mm_andnot_si128(
+            _mm_or_si128(_mm_cmpeq_epi32(n, zero), _mm_cmpeq_epi32(rightCount[b + 1], zero)), axisLanes);
+        const __m128i better = _mm_and_si128(bothSides, _mm_castps_si128(_mm_cmplt_ps(cost, bestCost)));
+        bestCost = _mm_blendv_ps(bestCost, cost, _mm_castsi128_ps(better));
+        bestBin = _mm_blendv_epi8(bestBin, _mm_set1_epi32(b), better);
+        bestLeft = _mm_blendv_epi8(bestLeft, n, better);
+        bestRight = _mm_blendv_epi8(bestRight, rightCount[b + 1], better);
     }
+    alignas(16) float costs[4];
+    alignas(16) int32_t bin[4];
+    alignas(16) uint32_t left[4], right[4];
+    _mm_store_ps(costs, bestCost);
+    _mm_store_si128(reinterpret_cast<__m128i*>(bin), bestBin);
+    _mm_store_si128(reinterpret_cast<__m128i*>(left), bestLeft);
+    _mm_store_si128(reinterpret_cast<__m128i*>(right), bestRight);
+    BestPlane best;
+    for (int a = 0; a < 3; ++a)
+        if (bin[a] >= 0 && costs[a] < best.cost) best = {a, bin[a], costs[a], left[a], right[a]};
+    return best;
 }
 
 /// How centroids map to bins along each axis: bin = (center2 - offset) * scale, clamped. Fewer bins
@@ -67,10 +106,10 @@ struct ObjectBinMapping {
         return _mm_min_epi32(_mm_max_epi32(bin, _mm_setzero_si128()), _mm_set1_epi32(count - 1));
     }
 
-    int binOf(const BuildRef& ref, int axis) const {
-        alignas(16) int32_t bins[4];
-        _mm_store_si128(reinterpret_cast<__m128i*>(bins), binOf(BuildBox(ref).center2()));
-        return bins[axis];
+    /// Bins of up to 255 in the low bytes: x, y, z (and the fourth lane's).
+    static uint32_t packed(__m128i bins) {
+        const __m128i words = _mm_packus_epi32(bins, bins);
+        return uint32_t(_mm_cvtsi128_si32(_mm_packus_epi16(words, words)));
     }
 };
 
@@ -94,7 +133,8 @@ struct ObjectBins {
 
     BuildBox box(int axis, int bin) const { return boxes.box(axis, bin); }
 
-    void add(const BuildRef* refs, size_t refCount, const ObjectBinMapping& mapping) {
+    /// Bins the references and writes each one's bins into it (BuildRef::bins).
+    void add(BuildRef* refs, size_t refCount, const ObjectBinMapping& mapping) {
         if (refCount < kInterleaveThreshold) {
             addEvery(refs, refCount, 1, mapping);
             return;
@@ -109,11 +149,13 @@ struct ObjectBins {
     }
 
     /// Bins refs[0], refs[stride], ... (fewer than refCount).
-    void addEvery(const BuildRef* refs, size_t refCount, size_t stride, const ObjectBinMapping& mapping) {
+    void addEvery(BuildRef* refs, size_t refCount, size_t stride, const ObjectBinMapping& mapping) {
         for (size_t i = 0; i < refCount; i += stride) {
             const BuildBox box(refs[i]);
+            const __m128i bin = mapping.binOf(box.center2());
+            refs[i].bins = ObjectBinMapping::packed(bin);
             alignas(16) int32_t bins[4];
-            _mm_store_si128(reinterpret_cast<__m128i*>(bins), mapping.binOf(box.center2()));
+            _mm_store_si128(reinterpret_cast<__m128i*>(bins), bin);
             for (int a = 0; a < 3; ++a) {
                 boxes.grow(a, bins[a], box);
                 ++counts[bins[a]][a];
@@ -127,16 +169,15 @@ struct ObjectBins {
             for (int a = 0; a < 3; ++a) counts[b][a] += other.counts[b][a];
     }
 
-    ObjectSplit bestSplit(const ObjectBinMapping& mapping, uint32_t blockSize) const {
+    ObjectSplit bestSplit(const ObjectBinMapping& mapping, uint32_t blockShift) const {
+        auto binCounts = [&](int b) { return _mm_load_si128(reinterpret_cast<const __m128i*>(counts[b])); };
+        const BestPlane plane = sweepPlanes(boxes, count, mapping.splittableAxes, blockShift, binCounts, binCounts);
         ObjectSplit best;
-        for (int a = 0; a < 3; ++a) {
-            if (!mapping.splittable(a)) continue;
-            auto binCount = [&](int b) { return counts[b][a]; };
-            sweepPlanes(boxes, a, count, blockSize, binCount, binCount, [&](int b, float cost, uint32_t, uint32_t) {
-                if (cost < best.cost) best = {a, b, cost, {}, {}};
-            });
-        }
-        if (best.axis >= 0) boxes.sides(best.axis, best.bin, count, best.left, best.right);
+        if (plane.axis < 0) return best;
+        best.axis = plane.axis;
+        best.bin = plane.bin;
+        best.cost = plane.cost;
+        boxes.sides(best.axis, best.bin, count, best.left, best.right);
         return best;
     }
 };

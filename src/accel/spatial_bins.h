@@ -102,17 +102,15 @@ struct SpatialBins {
             }
     }
 
-    SpatialSplit bestSplit(const SpatialBinMapping& mapping, uint32_t blockSize) const {
+    SpatialSplit bestSplit(const SpatialBinMapping& mapping, uint32_t blockShift) const {
+        const BestPlane plane = sweepPlanes(
+            boxes, count, mapping.splittableAxes, blockShift,
+            [&](int b) { return _mm_load_si128(reinterpret_cast<const __m128i*>(enter[b])); },
+            [&](int b) { return _mm_load_si128(reinterpret_cast<const __m128i*>(exit[b])); });
         SpatialSplit best;
-        for (int a = 0; a < 3; ++a) {
-            if (!mapping.splittable(a)) continue;
-            sweepPlanes(
-                boxes, a, count, blockSize, [&](int b) { return enter[b][a]; }, [&](int b) { return exit[b][a]; },
-                [&](int b, float cost, uint32_t left, uint32_t right) {
-                    if (cost < best.cost) best = {a, b, cost, left, right, {}, {}};
-                });
-        }
-        if (best.axis >= 0) boxes.sides(best.axis, best.bin, count, best.left, best.right);
+        if (plane.axis < 0) return best;
+        best = {plane.axis, plane.bin, plane.cost, plane.leftCount, plane.rightCount, {}, {}};
+        boxes.sides(best.axis, best.bin, count, best.left, best.right);
         return best;
     }
 };
