@@ -136,30 +136,31 @@ struct ObjectBins {
     /// Bins the references and writes each one's bins into it (BuildRef::bins).
     void add(BuildRef* refs, size_t refCount, const ObjectBinMapping& mapping) {
         if (refCount < kInterleaveThreshold) {
-            addEvery(refs, refCount, 1, mapping);
+            for (size_t i = 0; i < refCount; ++i) add(refs[i], mapping);
             return;
         }
         // Neighbouring references mostly fall in the same bins (partitions keep them spatially
         // sorted), which chains each bin update to the previous one through memory: odd and even
         // references go to two bin sets, merged at the end.
         ObjectBins odd(count);
-        addEvery(refs, refCount, 2, mapping);
-        odd.addEvery(refs + 1, refCount - 1, 2, mapping);
+        size_t i = 0;
+        for (; i + 1 < refCount; i += 2) {
+            add(refs[i], mapping);
+            odd.add(refs[i + 1], mapping);
+        }
+        if (i < refCount) add(refs[i], mapping);
         merge(odd);
     }
 
-    /// Bins refs[0], refs[stride], ... (fewer than refCount).
-    void addEvery(BuildRef* refs, size_t refCount, size_t stride, const ObjectBinMapping& mapping) {
-        for (size_t i = 0; i < refCount; i += stride) {
-            const BuildBox box(refs[i]);
-            const __m128i bin = mapping.binOf(box.center2());
-            refs[i].bins = ObjectBinMapping::packed(bin);
-            alignas(16) int32_t bins[4];
-            _mm_store_si128(reinterpret_cast<__m128i*>(bins), bin);
-            for (int a = 0; a < 3; ++a) {
-                boxes.grow(a, bins[a], box);
-                ++counts[bins[a]][a];
-            }
+    void add(BuildRef& ref, const ObjectBinMapping& mapping) {
+        const BuildBox box(ref);
+        const __m128i bin = mapping.binOf(box.center2());
+        ref.bins = ObjectBinMapping::packed(bin);
+        alignas(16) int32_t bins[4];
+        _mm_store_si128(reinterpret_cast<__m128i*>(bins), bin);
+        for (int a = 0; a < 3; ++a) {
+            boxes.grow(a, bins[a], box);
+            ++counts[bins[a]][a];
         }
     }
 

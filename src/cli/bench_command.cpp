@@ -198,6 +198,43 @@ std::vector<Candidate> embreeCandidates(const EmbreeStructure& embree, const std
     return out;
 }
 
+/// A structure bench builds: which backend, structure and quality, and the median of its timed builds.
+struct PlannedBuild {
+    std::string backend, accel, quality;
+    double medianSeconds = 0;
+    int runs = 0;
+};
+
+/// Builds every planned structure once to warm up (thread pool, page faults) and then `runs` more
+/// times, round-robin as the kernels are timed, and keeps the median build time of each and its last
+/// build. A structure that takes over a second is built at most three times in all.
+std::vector<std::shared_ptr<const Structure>> buildAll(std::vector<PlannedBuild>& planned,
+                                                       const std::shared_ptr<const SceneGeometry>& geometry, int runs,
+                                                       const std::string& label) {
+    std::vector<std::shared_ptr<const Structure>> built(planned.size());
+    std::vector<std::vector<double>> seconds(planned.size());
+    for (int run = 0; run <= runs; ++run) {
+        fmt::print(stderr, "\r{}: {} {} of {}...            ", label, run == 0 ? "building, warm-up" : "build run", run,
+                   runs);
+        for (size_t i = 0; i < planned.size(); ++i) {
+            if (run > 2 && seconds[i].back() > 1.0) continue;
+            StructureOptions options;
+            if (planned[i].accel != "bvh8" && planned[i].backend != "embree") options.accel = planned[i].accel;
+            options.quality = planned[i].quality;
+            built[i].reset();  // one copy at a time
+            built[i] = findBackend(planned[i].backend).build(geometry, options);
+            if (run > 0) seconds[i].push_back(built[i]->buildSeconds());
+        }
+    }
+    fmt::print(stderr, "\r{:60}\r", "");
+    for (size_t i = 0; i < planned.size(); ++i) {
+        std::sort(seconds[i].begin(), seconds[i].end());
+        planned[i].medianSeconds = seconds[i][seconds[i].size() / 2];
+        planned[i].runs = int(seconds[i].size());
+    }
+    return built;
+}
+
 std::string shortName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
 void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& results, nlohmann::json& builds,
@@ -212,57 +249,51 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
     const std::string workload = isSceneFile(input) ? "scene" : "framed";
     fmt::print(stderr, "{}: {} triangles, building BVHs...\n", name, geometry->triangleCount());
 
-    // Each structure is built once: ours (fast, high or both), and Embree at medium and high quality.
-    // Our kernels are called directly on the BVH's view (the shadow-cache candidate needs a cache per task).
-    std::vector<std::shared_ptr<const WideBvhStructure<8>>> ours;
-    for (const char* quality : {"fast", "high"}) {
-        if (args.quality != quality && args.quality != "both") continue;
-        StructureOptions options;
-        options.quality = quality;
-        ours.push_back(std::static_pointer_cast<const WideBvhStructure<8>>(findBackend("wideray").build(geometry, options)));
-        builds.push_back({{"scene", name}, {"backend", "wideray"}, {"accel", "bvh8"}, {"quality", quality}, {"layout", ours.back()->name()},
-                          {"seconds", ours.back()->buildSeconds()}, {"bytes", ours.back()->bytes()},
-                          {"references", ours.back()->accel().triangleReferences()}});
-    }
-    std::vector<std::pair<std::string, std::shared_ptr<const Structure>>> embree;
-    for (const char* quality : {"medium", "high"}) {
-        StructureOptions options;
-        options.quality = quality;
-        embree.emplace_back(quality, findBackend("embree").build(geometry, options));
-        builds.push_back({{"scene", name}, {"backend", "embree"}, {"quality", quality},
-                          {"seconds", embree.back().second->buildSeconds()}, {"bytes", embree.back().second->bytes()}});
-    }
-
-    // Our other structures: BVH4 with its single-ray kernels, the course's structures with theirs.
-    std::vector<Candidate> others;
-    std::vector<std::shared_ptr<const Structure>> keepAlive;  // what the candidates' views point into
+    // The structures: ours (fast, high or both), Embree at medium and high quality, then our others.
+    std::vector<PlannedBuild> planned;
+    for (const char* quality : {"fast", "high"})
+        if (args.quality == quality || args.quality == "both") planned.push_back({"wideray", "bvh8", quality});
+    for (const char* quality : {"medium", "high"}) planned.push_back({"embree", "embree", quality});
     for (const std::string& accel : args.accels) {
         if (accel == "bvh8") continue;
-        StructureOptions options;
-        options.accel = accel;
-        if (accel == "bvh4") {
-            for (const char* quality : {"fast", "high"}) {
-                if (args.quality != quality && args.quality != "both") continue;
-                options.quality = quality;
-                auto bvh4 = std::static_pointer_cast<const WideBvhStructure<4>>(findBackend("wideray").build(geometry, options));
-                builds.push_back({{"scene", name}, {"backend", "wideray"}, {"accel", accel}, {"quality", quality},
-                                  {"layout", bvh4->name()}, {"seconds", bvh4->buildSeconds()}, {"bytes", bvh4->bytes()}});
-                for (Candidate& c : ourCandidates(bvh4->accel(), quality, args.allIsas, {"scalar", "single"}))
-                    others.push_back(std::move(c));
-                keepAlive.push_back(bvh4);
-            }
-            continue;
-        }
-        fmt::print(stderr, "{}: building {}...\n", name, accel);
-        auto course = std::dynamic_pointer_cast<const CourseStructure>(findBackend("wideray").build(geometry, options));
-        builds.push_back({{"scene", name}, {"backend", "wideray"}, {"accel", accel}, {"quality", "fast"},
-                          {"layout", course->name()}, {"seconds", course->buildSeconds()}, {"bytes", course->bytes()}});
-        for (Candidate& c : courseCandidates(course, accel, args.allIsas)) others.push_back(std::move(c));
+        for (const char* quality : {"fast", "high"})
+            if (accel != "bvh4" ? quality == std::string("fast") : args.quality == quality || args.quality == "both")
+                planned.push_back({"wideray", accel, quality});
     }
-    for (const auto& b : builds)
-        if (b["scene"] == name)
-            fmt::print("{}: build {} {}: {:.1f} ms, {:.1f} MB\n", name, std::string(b.value("accel", "embree")),
-                       std::string(b["quality"]), double(b["seconds"]) * 1e3, double(b["bytes"]) / 1e6);
+    const std::vector<std::shared_ptr<const Structure>> built = buildAll(planned, geometry, args.runs, name);
+
+    // Our kernels are called directly on the BVH's view (the shadow-cache candidate needs a cache per task).
+    std::vector<std::shared_ptr<const WideBvhStructure<8>>> ours;
+    std::vector<std::pair<std::string, std::shared_ptr<const Structure>>> embree;
+    std::vector<Candidate> others;  // BVH4 with its single-ray kernels, the course's structures with theirs
+    for (size_t i = 0; i < planned.size(); ++i) {
+        const PlannedBuild& p = planned[i];
+        const std::shared_ptr<const Structure>& structure = built[i];
+        nlohmann::json record = {{"scene", name}, {"backend", p.backend}, {"quality", p.quality},
+                                 {"seconds", p.medianSeconds}, {"bytes", structure->bytes()}};
+        if (p.backend == "wideray") {
+            record["accel"] = p.accel;
+            record["layout"] = structure->name();
+        }
+        if (p.backend == "embree") {
+            embree.emplace_back(p.quality, structure);
+        } else if (p.accel == "bvh8") {
+            ours.push_back(std::static_pointer_cast<const WideBvhStructure<8>>(structure));
+            record["references"] = ours.back()->accel().triangleReferences();
+        } else if (p.accel == "bvh4") {
+            auto bvh4 = std::static_pointer_cast<const WideBvhStructure<4>>(structure);
+            for (Candidate& c : ourCandidates(bvh4->accel(), p.quality, args.allIsas, {"scalar", "single"}))
+                others.push_back(std::move(c));
+        } else {
+            for (Candidate& c : courseCandidates(std::dynamic_pointer_cast<const CourseStructure>(structure), p.accel,
+                                                 args.allIsas))
+                others.push_back(std::move(c));
+        }
+        builds.push_back(std::move(record));
+        fmt::print("{}: build {} {}: {:.1f} ms (median of {}), {:.1f} MB\n", name,
+                   p.backend == "embree" ? std::string("embree") : p.accel, p.quality, p.medianSeconds * 1e3,
+                   p.runs, double(structure->bytes()) / 1e6);
+    }
 
     BenchRays rays = makeBenchRays(scene, *ours.front()->tracer({"scalar"}), width, height);
 
