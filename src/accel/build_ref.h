@@ -1,7 +1,7 @@
 #pragma once
 // What the BVH builders sort: one reference per primitive (more than one where spatial splits clip
 // it), 32 bytes, its box loaded as two SSE registers. The builders' arithmetic is on BuildBox.
-#include <nmmintrin.h>
+#include <nmmintrin.h>  // SSE4.2, and SSE4.1's blends
 
 #include <cstdint>
 #include <limits>
@@ -26,14 +26,18 @@ static_assert(sizeof(BuildRef) == 32);
 /// The builders' reference arrays, sized without zeroing (they are filled in parallel).
 using BuildRefs = UninitializedVector<BuildRef>;
 
-/// A box in two SSE registers; the fourth lane is not part of it (it may hold anything).
+/// A box in two SSE registers; the fourth lane is not part of it.
 struct BuildBox {
     __m128 lower = _mm_set1_ps(std::numeric_limits<float>::infinity());
     __m128 upper = _mm_set1_ps(-std::numeric_limits<float>::infinity());
 
     BuildBox() = default;
     BuildBox(__m128 lo, __m128 hi) : lower(lo), upper(hi) {}
-    explicit BuildBox(const BuildRef& r) : lower(_mm_load_ps(&r.lower.x)), upper(_mm_load_ps(&r.upper.x)) {}
+    /// The fourth lanes (the reference's prim and bins, denormal as floats) are zeroed: arithmetic on
+    /// denormals is slow (2.5x the binning's time where FTZ and DAZ are off).
+    explicit BuildBox(const BuildRef& r)
+        : lower(_mm_blend_ps(_mm_load_ps(&r.lower.x), _mm_setzero_ps(), 8)),
+          upper(_mm_blend_ps(_mm_load_ps(&r.upper.x), _mm_setzero_ps(), 8)) {}
 
     void grow(const BuildBox& b) { lower = _mm_min_ps(lower, b.lower); upper = _mm_max_ps(upper, b.upper); }
     void grow(__m128 p) { lower = _mm_min_ps(lower, p); upper = _mm_max_ps(upper, p); }

@@ -37,16 +37,18 @@ RenderedImage renderSceneFile(const std::string& path, const RenderRequest& requ
         if (request.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(request.threads));
         MxcsrScope callerMode;  // saved before FlushToZeroScope sets this thread's mode, restored after
         FlushToZeroScope ftz;
-        auto geometry = std::make_shared<const SceneGeometry>(scene);
-        std::shared_ptr<const Structure> structure = buildWideBvh(geometry, StructureOptions{});
-        std::unique_ptr<Tracer> tracer = structure->tracer(KernelChoice{});
-        RenderOptions options;
-        options.width = request.width;
-        options.height = request.height;
-        options.samplesPerPixel = request.samplesPerPixel;
-        RenderStats stats;
-        Image image = render(scene, *tracer, options, stats);
-        return {image.width, image.height, std::move(image.pixels)};
+        return ftz.run([&]() -> RenderedImage {
+            auto geometry = std::make_shared<const SceneGeometry>(scene);
+            std::shared_ptr<const Structure> structure = buildWideBvh(geometry, StructureOptions{});
+            std::unique_ptr<Tracer> tracer = structure->tracer(KernelChoice{});
+            RenderOptions options;
+            options.width = request.width;
+            options.height = request.height;
+            options.samplesPerPixel = request.samplesPerPixel;
+            RenderStats stats;
+            Image image = render(scene, *tracer, options, stats);
+            return {image.width, image.height, std::move(image.pixels)};
+        });
     } catch (const InputError& e) {
         throw Error(e.what());
     } catch (const std::length_error& e) {  // more primitives than the structure can address

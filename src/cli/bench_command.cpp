@@ -401,32 +401,34 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     cmd->add_option("--json", args->json, "Write the results as JSON (fields: machine, results, builds)");
     cmd->callback([args, &exitCode] {
         FlushToZeroScope ftz;
-        int threads = args->threads > 0 ? args->threads : int(std::thread::hardware_concurrency());
-        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
-        nlohmann::json results = nlohmann::json::array(), builds = nlohmann::json::array();
-        for (const std::string& input : args->inputs) {
-            try {
-                benchOne(*args, input, results, builds, threads);
-            } catch (const std::exception& e) {
-                fmt::print(stderr, "error: {}\n", e.what());
-                exitCode = 1;
+        ftz.run([&] {
+            int threads = args->threads > 0 ? args->threads : int(std::thread::hardware_concurrency());
+            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+            nlohmann::json results = nlohmann::json::array(), builds = nlohmann::json::array();
+            for (const std::string& input : args->inputs) {
+                try {
+                    benchOne(*args, input, results, builds, threads);
+                } catch (const std::exception& e) {
+                    fmt::print(stderr, "error: {}\n", e.what());
+                    exitCode = 1;
+                }
             }
-        }
-        if (!args->json.empty()) {
-            nlohmann::json doc = {{"machine",
-                                   {{"cpu", cpuModelName()},
-                                    {"cores", std::thread::hardware_concurrency()},
-                                    {"threads", threads},
-                                    {"isa", isaName(bestIsa())}}},
-                                  {"size", args->size},
-                                  {"results", results},
-                                  {"builds", builds}};
-            std::filesystem::path path(args->json), temp = path;
-            temp += ".tmp";
-            if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-            std::ofstream(temp) << doc.dump(2) << "\n";
-            std::filesystem::rename(temp, path);
-        }
+            if (!args->json.empty()) {
+                nlohmann::json doc = {{"machine",
+                                       {{"cpu", cpuModelName()},
+                                        {"cores", std::thread::hardware_concurrency()},
+                                        {"threads", threads},
+                                        {"isa", isaName(bestIsa())}}},
+                                      {"size", args->size},
+                                      {"results", results},
+                                      {"builds", builds}};
+                std::filesystem::path path(args->json), temp = path;
+                temp += ".tmp";
+                if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+                std::ofstream(temp) << doc.dump(2) << "\n";
+                std::filesystem::rename(temp, path);
+            }
+        });
     });
 }
 

@@ -30,34 +30,36 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
         ->delimiter(',');
     cmd->callback([files, isa, quality, accel, instancing, &exitCode] {
         FlushToZeroScope ftz;
-        Isa chosen = *isa == "auto" ? bestIsa() : *parseIsa(*isa);
-        fmt::print("CPU: {}; detected ISA: {}; chosen ISA: {}{}\n", cpuModelName(), isaName(bestIsa()),
-                   isaName(chosen), cpuSupports(chosen) ? "" : " (NOT supported by this CPU)");
-        if (!cpuSupports(chosen)) exitCode = 1;
-        for (const std::string& file : *files) {
-            try {
-                SceneDescription scene = loadSceneOrMesh(file);
-                for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
-                const std::vector<std::string> accels = accel->empty() ? std::vector<std::string>{"bvh4", "bvh8"} : *accel;
-                auto geometry = std::make_shared<const SceneGeometry>(scene, instancingFor(*instancing, accels));
-                size_t dropped = 0;
-                for (const TriangleMesh& m : scene.meshes) dropped += m.droppedDegenerate;
-                fmt::print("{}: {} triangles ({} zero-area dropped), {} spheres, {} meshes, {} instances\n", file,
-                           geometry->triangleCount(), dropped, scene.spheres.size(), scene.meshes.size(),
-                           scene.instances.size());
-                const Backend& ours = findBackend("wideray");
-                for (const std::string& name : accels) {
-                    StructureOptions options;
-                    options.accel = name;
-                    options.quality = *quality;
-                    std::shared_ptr<const Structure> structure = ours.build(geometry, options);
-                    fmt::print("{}; {:.1f} MB\n", structure->summary(), double(structure->bytes()) / 1e6);
+        ftz.run([&] {
+            Isa chosen = *isa == "auto" ? bestIsa() : *parseIsa(*isa);
+            fmt::print("CPU: {}; detected ISA: {}; chosen ISA: {}{}\n", cpuModelName(), isaName(bestIsa()),
+                       isaName(chosen), cpuSupports(chosen) ? "" : " (NOT supported by this CPU)");
+            if (!cpuSupports(chosen)) exitCode = 1;
+            for (const std::string& file : *files) {
+                try {
+                    SceneDescription scene = loadSceneOrMesh(file);
+                    for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
+                    const std::vector<std::string> accels = accel->empty() ? std::vector<std::string>{"bvh4", "bvh8"} : *accel;
+                    auto geometry = std::make_shared<const SceneGeometry>(scene, instancingFor(*instancing, accels));
+                    size_t dropped = 0;
+                    for (const TriangleMesh& m : scene.meshes) dropped += m.droppedDegenerate;
+                    fmt::print("{}: {} triangles ({} zero-area dropped), {} spheres, {} meshes, {} instances\n", file,
+                               geometry->triangleCount(), dropped, scene.spheres.size(), scene.meshes.size(),
+                               scene.instances.size());
+                    const Backend& ours = findBackend("wideray");
+                    for (const std::string& name : accels) {
+                        StructureOptions options;
+                        options.accel = name;
+                        options.quality = *quality;
+                        std::shared_ptr<const Structure> structure = ours.build(geometry, options);
+                        fmt::print("{}; {:.1f} MB\n", structure->summary(), double(structure->bytes()) / 1e6);
+                    }
+                } catch (const std::exception& e) {
+                    fmt::print(stderr, "error: {}\n", e.what());
+                    exitCode = 1;
                 }
-            } catch (const std::exception& e) {
-                fmt::print(stderr, "error: {}\n", e.what());
-                exitCode = 1;
             }
-        }
+        });
     });
 }
 

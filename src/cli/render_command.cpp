@@ -122,23 +122,25 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
     addEngineOptions(*cmd, args->engine);
     cmd->callback([args, &exitCode] {
         FlushToZeroScope ftz;
-        std::optional<tbb::global_control> threads;
-        if (args->engine.threads > 0)
-            threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(args->engine.threads));
-        if (launchedRanks() > 0) {
+        ftz.run([&] {
+            std::optional<tbb::global_control> threads;
+            if (args->engine.threads > 0)
+                threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(args->engine.threads));
+            if (launchedRanks() > 0) {
 #ifdef WIDERAY_HAVE_MPI
-            exitCode = renderWithMpi(*args);
+                exitCode = renderWithMpi(*args);
 #else
-            fmt::print(stderr, "error: wideray was started by mpirun, but this build has no MPI support (install "
-                               "libopenmpi-dev and rebuild; without mpirun, render runs in one process)\n");
-            exitCode = 1;
+                fmt::print(stderr, "error: wideray was started by mpirun, but this build has no MPI support (install "
+                                   "libopenmpi-dev and rebuild; without mpirun, render runs in one process)\n");
+                exitCode = 1;
 #endif
-            return;
-        }
-        if (const size_t failed = renderHere(*args); failed > 0) {
-            fmt::print(stderr, "{} of {} scenes failed\n", failed, args->scenes.size());
-            exitCode = 1;
-        }
+                return;
+            }
+            if (const size_t failed = renderHere(*args); failed > 0) {
+                fmt::print(stderr, "{} of {} scenes failed\n", failed, args->scenes.size());
+                exitCode = 1;
+            }
+        });
     });
 }
 

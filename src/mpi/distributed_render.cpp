@@ -16,6 +16,7 @@
 #include <fmt/core.h>
 #include <mpi.h>
 
+#include "core/fp_mode.h"
 #include "mpi/part_message.h"
 #include "render/progress.h"
 
@@ -245,7 +246,10 @@ void renderOwnItems(const DistributedBatch& batch, Dispatcher& dispatcher) {
 void serveAndRender(const MpiSession& session, const DistributedBatch& batch) {
     FrameOutbox outbox(batch);
     Dispatcher dispatcher(batch, partsPerFrame(batch.jobs, session.size()), session.size(), outbox);
-    std::thread own([&] { renderOwnItems(batch, dispatcher); });
+    std::thread own([&] {
+        FlushToZeroScope ftz;  // a thread of its own: its tasks do not inherit the caller's mode
+        ftz.run([&] { renderOwnItems(batch, dispatcher); });
+    });
     struct Join {
         std::thread& thread;
         ~Join() { thread.join(); }
