@@ -155,8 +155,9 @@ def commands_section(commands):
 METHOD = """## How the rays are made
 
 Every kernel, ours and Embree's, traces the same ray set in the same process with the same threads
-(oneTBB, 4096 rays per task), flush-to-zero and denormals-are-zero on every thread. Each measurement
-is one warm-up and then the median of the timed runs.
+(oneTBB, 4096 rays per task), flush-to-zero and denormals-are-zero in every task (run inside a
+oneTBB arena made after setting them: oneTBB gives each task the mode its arena captured). Each
+measurement is one warm-up and then the median of the timed runs; builds too.
 
 - A scene file gives the camera and the first point light. A bare mesh (OBJ, PLY, glTF) is framed by
   this rule: c = center and R = half the diagonal of the mesh bounds; eye = c + normalize(0.3, 0.25,
@@ -299,7 +300,8 @@ def build_section(bench):
         rows.append((scene, ms(ours), mb(ours), ms(ours_high), mb(ours_high), refs(ours_high), ms(medium), mb(medium),
                      ms(high), mb(high), faster(medium, ours), faster(high, ours_high),
                      "%.2f×" % (ours["bytes"] / medium["bytes"]) if medium and medium["bytes"] else ""))
-    return ("## Builds and memory\n\nBuild time on all threads of the comparison run, and the memory of the "
+    return ("## Builds and memory\n\nBuild time on all threads of the comparison run (the median of as many "
+            "builds as timed runs, after a warm-up build, the builders taken in turn), and the memory of the "
             "acceleration structure (ours: binned SAH binary BVH collapsed to 8 wide, with leaf triangle "
             "blocks; high quality adds spatial splits, references per triangle say how many triangles "
             "they duplicate). Build speed ratios are Embree's time / ours, fast against medium and high "
