@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <optional>
 
 #include <tbb/global_control.h>
@@ -258,6 +259,20 @@ TEST(Bvh, SahCostBelowMedianSplit) {
     }
 }
 
+void expectSameTree(const SceneAccel<8>& a, const SceneAccel<8>& b) {
+    ASSERT_EQ(a.bvh().nodes.size(), b.bvh().nodes.size());
+    for (size_t n = 0; n < a.bvh().nodes.size(); ++n) {
+        const WideNode<8>&x = a.bvh().nodes[n], &y = b.bvh().nodes[n];
+        for (int i = 0; i < 8; ++i) {
+            ASSERT_EQ(x.child[i].bits, y.child[i].bits);
+            ASSERT_EQ(x.lowerX[i], y.lowerX[i]);
+            ASSERT_EQ(x.upperZ[i], y.upperZ[i]);
+        }
+    }
+    ASSERT_EQ(a.blocks().size(), b.blocks().size());
+    EXPECT_EQ(0, std::memcmp(a.blocks().data(), b.blocks().data(), a.blocks().size() * sizeof(TriangleBlock<4>)));
+}
+
 /// The same tree whatever the thread count: one thread, then all of them (the build is parallel above
 /// 4096 primitives, which the test mesh exceeds).
 void expectSameTreeOnOneAndAllThreads(const BvhBuildConfig& config) {
@@ -269,22 +284,25 @@ void expectSameTreeOnOneAndAllThreads(const BvhBuildConfig& config) {
         a.emplace(std::make_shared<SceneGeometry>(mesh), config);
     }
     SceneAccel<8> b(std::make_shared<SceneGeometry>(mesh), config);
-    ASSERT_EQ(a->bvh().nodes.size(), b.bvh().nodes.size());
-    for (size_t n = 0; n < a->bvh().nodes.size(); ++n) {
-        const WideNode<8>&x = a->bvh().nodes[n], &y = b.bvh().nodes[n];
-        for (int i = 0; i < 8; ++i) {
-            ASSERT_EQ(x.child[i].bits, y.child[i].bits);
-            ASSERT_EQ(x.lowerX[i], y.lowerX[i]);
-            ASSERT_EQ(x.upperZ[i], y.upperZ[i]);
-        }
-    }
-    ASSERT_EQ(a->blocks().size(), b.blocks().size());
-    EXPECT_EQ(0, std::memcmp(a->blocks().data(), b.blocks().data(), a->blocks().size() * sizeof(TriangleBlock<4>)));
+    expectSameTree(*a, b);
 }
 
 TEST(Bvh, BuildIsDeterministic) {
     expectSameTreeOnOneAndAllThreads(SceneAccel<8>::defaultConfig());
     expectSameTreeOnOneAndAllThreads(highConfig<8>());
+}
+
+/// The parallel partition of large nodes gives the serial one's order, not only its sets: the leaves
+/// hold their triangles in the same order.
+TEST(Bvh, ParallelPartitionEqualsTheSerialOne) {
+    const auto geometry = std::make_shared<SceneGeometry>(testMesh());
+    for (BvhBuildConfig config : {SceneAccel<8>::defaultConfig(), highConfig<8>()}) {
+        config.parallelPartitionMinRefs = std::numeric_limits<uint32_t>::max();
+        const SceneAccel<8> serial(geometry, config);
+        config.parallelPartitionMinRefs = 2;  // every node with an object split
+        const SceneAccel<8> parallel(geometry, config);
+        expectSameTree(serial, parallel);
+    }
 }
 
 } // namespace

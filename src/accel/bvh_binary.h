@@ -61,6 +61,8 @@ struct BvhBuildConfig {
     /// costs less. Above it, spatial splits won on every mesh measured (tests/test_bvh.cpp checks
     /// the shared meshes), and the second build would add half the time.
     size_t compareBuildsBelow = size_t(1) << 17;
+    /// Nodes of at least this many references partition them on all threads (with the same result).
+    uint32_t parallelPartitionMinRefs = 1u << 16;
 };
 
 /// The deepest a build goes; past kMedianDepth it splits at the object median, which bounds the depth.

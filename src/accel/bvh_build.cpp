@@ -7,6 +7,7 @@
 #include <memory>
 #include <new>
 #include <optional>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -174,6 +175,7 @@ private:
                                     : std::numeric_limits<float>::infinity();
         if (fitsLeaf && leafCost <= splitCost) return false;
         if (spatial.cost < object.cost) splitSpatially(range, spatial, *spatialMapping, left, right);
+        else if (object.axis >= 0 && count >= config_.parallelPartitionMinRefs) splitObjectsInParallel(range, object, left, right);
         else if (object.axis >= 0) splitObjects(range, object, left, right);
         else splitAtMedian(range, left, right);
         return true;
@@ -210,6 +212,95 @@ private:
         }
         left = {range.begin, i, i, split.left, l};
         right = {i, range.end, range.end, split.right, r};
+    }
+
+    /// splitObjects on all threads, with the same result. Hoare's partition there swaps the k-th
+    /// reference going right in [begin, mid) counted from the front with the k-th going left in
+    /// [mid, end) counted from the back (mid = begin + the references going left); here blocks of
+    /// references count them, chunks of the swaps find where they start, and then swap in parallel.
+    void splitObjectsInParallel(const BuildRange& range, const ObjectSplit& split, BuildRange& left,
+                                BuildRange& right) {
+        constexpr uint32_t kBlock = 4096, kSwapChunk = 4096;
+        BuildRef* refs = refs_.data();
+        auto goesLeft = [&](uint32_t i) { return refs[i].binAlong(split.axis) <= split.bin; };
+        const uint32_t blocks = (range.size() + kBlock - 1) / kBlock;
+        auto blockBegin = [&](uint32_t b) { return range.begin + b * kBlock; };
+        auto blockEnd = [&](uint32_t b) { return std::min(range.end, range.begin + (b + 1) * kBlock); };
+
+        struct Block {
+            uint32_t lefts = 0;
+            BuildBox leftCentroids, rightCentroids;
+        };
+        std::vector<Block> counted(blocks);
+        tbb::parallel_for(uint32_t(0), blocks, [&](uint32_t b) {
+            Block c;
+            for (uint32_t i = blockBegin(b); i != blockEnd(b); ++i) {
+                const __m128 centroid = BuildBox(refs[i]).center2();
+                if (goesLeft(i)) ++c.lefts, c.leftCentroids.grow(centroid);
+                else c.rightCentroids.grow(centroid);
+            }
+            counted[b] = c;
+        });
+        BuildBox leftCentroids, rightCentroids;
+        uint32_t mid = range.begin;
+        for (const Block& c : counted) {
+            mid += c.lefts;
+            leftCentroids.grow(c.leftCentroids);
+            rightCentroids.grow(c.rightCentroids);
+        }
+        left = {range.begin, mid, mid, split.left, leftCentroids};
+        right = {mid, range.end, range.end, split.right, rightCentroids};
+
+        // Misplaced references of each block (going right before mid, going left from mid on) and
+        // their ranks: rightRank[b] of the first in block b counted from the front, leftRank[b]
+        // counted from the back.
+        std::vector<uint32_t> rightRank(blocks + 1, 0), leftRank(blocks + 1, 0);
+        for (uint32_t b = 0; b < blocks; ++b) {
+            uint32_t wrongRight = 0;
+            if (blockEnd(b) <= mid) wrongRight = blockEnd(b) - blockBegin(b) - counted[b].lefts;
+            else
+                for (uint32_t i = blockBegin(b); i < mid; ++i) wrongRight += !goesLeft(i);
+            rightRank[b + 1] = rightRank[b] + wrongRight;
+        }
+        for (uint32_t b = blocks; b-- > 0;) {
+            uint32_t wrongLeft = 0;
+            if (blockBegin(b) >= mid) wrongLeft = counted[b].lefts;
+            else
+                for (uint32_t i = mid; i < blockEnd(b); ++i) wrongLeft += goesLeft(i);
+            leftRank[b] = leftRank[b + 1] + wrongLeft;  // leftRank[b]: those in blocks b and after
+        }
+        const uint32_t misplaced = rightRank[blocks];
+        assert(misplaced == leftRank[0]);
+
+        // Where each chunk of swaps starts, found before any swap changes what the scans read.
+        const uint32_t chunks = (misplaced + kSwapChunk - 1) / kSwapChunk;
+        std::vector<std::pair<uint32_t, uint32_t>> starts(chunks);
+        tbb::parallel_for(uint32_t(0), chunks, [&](uint32_t c) {
+            const uint32_t k = c * kSwapChunk;
+            // The block holding the k-th misplaced right reference, then the reference.
+            uint32_t b = uint32_t(std::upper_bound(rightRank.begin(), rightRank.end(), k) - rightRank.begin()) - 1;
+            uint32_t i = blockBegin(b);
+            for (uint32_t seen = rightRank[b];; ++i)
+                if (!goesLeft(i) && seen++ == k) break;
+            // The k-th misplaced left reference from the back: leftRank falls with b.
+            uint32_t d = blocks;
+            while (leftRank[d] <= k) --d;  // blocks [d + 1, blocks) hold fewer than k + 1
+            uint32_t j = blockEnd(d);
+            for (uint32_t seen = leftRank[d + 1];; )
+                if (goesLeft(--j) && seen++ == k) break;
+            starts[c] = {i, j};
+        });
+        tbb::parallel_for(uint32_t(0), chunks, [&](uint32_t c) {
+            auto [i, j] = starts[c];
+            const uint32_t swaps = std::min(kSwapChunk, misplaced - c * kSwapChunk);
+            for (uint32_t n = 0;; ++i) {
+                if (goesLeft(i)) continue;
+                while (!goesLeft(j)) --j;
+                std::swap(refs[i], refs[j]);
+                if (++n == swaps) break;
+                --j;
+            }
+        });
     }
 
     void splitAtMedian(const BuildRange& range, BuildRange& left, BuildRange& right) {
