@@ -218,6 +218,9 @@ private:
     /// reference going right in [begin, mid) counted from the front with the k-th going left in
     /// [mid, end) counted from the back (mid = begin + the references going left); here blocks of
     /// references count them, chunks of the swaps find where they start, and then swap in parallel.
+    /// (Centroid bounds merge per block: a NaN centroid, from a user primitive with empty bounds, makes
+    /// min and max depend on order, so there they may differ from the serial scan's, though never
+    /// with the thread count.)
     void splitObjectsInParallel(const BuildRange& range, const ObjectSplit& split, BuildRange& left,
                                 BuildRange& right) {
         constexpr uint32_t kBlock = 4096, kSwapChunk = 4096;
