@@ -3,7 +3,7 @@
 // hierarchies"): references are binned by centroid along all three axes at once, and a sweep over the
 // bins finds the split plane of least SAH cost.
 #include <algorithm>
-#include <array>
+#include <limits>
 
 #include "accel/build_ref.h"
 
@@ -99,8 +99,6 @@ struct ObjectBinMapping {
         splittableAxes = _mm_movemask_ps(spread) & 7;
     }
 
-    bool splittable(int axis) const { return splittableAxes >> axis & 1; }
-
     __m128i binOf(__m128 center2) const {
         const __m128i bin = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(center2, offset), scale));
         return _mm_min_epi32(_mm_max_epi32(bin, _mm_setzero_si128()), _mm_set1_epi32(count - 1));
@@ -114,11 +112,8 @@ struct ObjectBinMapping {
 };
 
 /// The best object split: references whose centroid bin along `axis` is <= `bin` go left.
-struct ObjectSplit {
-    int axis = -1;
-    int bin = 0;
-    float cost = std::numeric_limits<float>::infinity();  ///< sum of both sides' sideCost
-    BuildBox left, right;
+struct ObjectSplit : BestPlane {
+    BuildBox left, right;  ///< the boxes of the two sides' references
 };
 
 struct ObjectBins {
@@ -173,12 +168,8 @@ struct ObjectBins {
     ObjectSplit bestSplit(const ObjectBinMapping& mapping, uint32_t blockShift) const {
         auto binCounts = [&](int b) { return _mm_load_si128(reinterpret_cast<const __m128i*>(counts[b])); };
         const BestPlane plane = sweepPlanes(boxes, count, mapping.splittableAxes, blockShift, binCounts, binCounts);
-        ObjectSplit best;
-        if (plane.axis < 0) return best;
-        best.axis = plane.axis;
-        best.bin = plane.bin;
-        best.cost = plane.cost;
-        boxes.sides(best.axis, best.bin, count, best.left, best.right);
+        ObjectSplit best{plane, {}, {}};
+        if (best.axis >= 0) boxes.sides(best.axis, best.bin, count, best.left, best.right);
         return best;
     }
 };

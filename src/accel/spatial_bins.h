@@ -4,7 +4,6 @@
 // clipped into each bin it overlaps, and a sweep finds the plane of least SAH cost counting the
 // references that straddle it on both sides.
 #include <algorithm>
-#include <array>
 
 #include "accel/object_bins.h"
 #include "accel/triangle_splitter.h"
@@ -42,12 +41,9 @@ struct SpatialBinMapping {
 };
 
 /// The best spatial split: the plane between bins `bin` and `bin + 1` along `axis`.
-struct SpatialSplit {
-    int axis = -1;
-    int bin = 0;
-    float cost = std::numeric_limits<float>::infinity();
-    uint32_t leftCount = 0, rightCount = 0;  ///< their sum exceeds the node's count by the duplicates
-    BuildBox left, right;                    ///< the boxes of the two sides' (clipped) references
+/// leftCount + rightCount exceeds the node's count by the duplicates.
+struct SpatialSplit : BestPlane {
+    BuildBox left, right;  ///< the boxes of the two sides' (clipped) references
 };
 
 struct SpatialBins {
@@ -107,10 +103,8 @@ struct SpatialBins {
             boxes, count, mapping.splittableAxes, blockShift,
             [&](int b) { return _mm_load_si128(reinterpret_cast<const __m128i*>(enter[b])); },
             [&](int b) { return _mm_load_si128(reinterpret_cast<const __m128i*>(exit[b])); });
-        SpatialSplit best;
-        if (plane.axis < 0) return best;
-        best = {plane.axis, plane.bin, plane.cost, plane.leftCount, plane.rightCount, {}, {}};
-        boxes.sides(best.axis, best.bin, count, best.left, best.right);
+        SpatialSplit best{plane, {}, {}};
+        if (best.axis >= 0) boxes.sides(best.axis, best.bin, count, best.left, best.right);
         return best;
     }
 };
