@@ -16,7 +16,7 @@ Bvh2 buildBvh2(const PrimitiveTable& table) {
     BvhBuildConfig config;
     config.maxLeafSize = 4;
     const BinaryBvh binary = buildBinaryBvh(std::move(refs), config);
-    out.items = binary.primIndices;
+    out.items.assign(binary.primIndices.begin(), binary.primIndices.end());
     out.nodes.reserve(binary.nodes.size());
     for (const BinaryNode& n : binary.nodes) {
         out.nodes.push_back({boxPlanes(n.bounds), n.first, n.count});

@@ -7,6 +7,7 @@
 
 #include "accel/build_ref.h"
 #include "core/bounds.h"
+#include "core/default_init_allocator.h"
 #include "wideray/options.h"
 
 namespace wideray {
@@ -20,8 +21,8 @@ struct BinaryNode {
 };
 
 struct BinaryBvh {
-    std::vector<BinaryNode> nodes;  ///< nodes[0] is the root
-    std::vector<uint32_t> primIndices;  ///< leaves' primitives; a subtree's are contiguous
+    UninitializedVector<BinaryNode> nodes;  ///< nodes[0] is the root
+    UninitializedVector<uint32_t> primIndices;  ///< leaves' primitives; a subtree's are contiguous
 };
 
 enum class SplitMethod { Sah, Median };
@@ -53,20 +54,28 @@ struct BvhBuildConfig {
     /// High quality: spatial splits are tried where the best object split's children overlap by more
     /// than this fraction of the root's area (Stich et al.'s alpha).
     float spatialOverlap = 1e-5f;
+    /// ... and by more than this fraction of the node's own area (Embree's second test: where the
+    /// object split's children barely overlap, clipping cannot gain much).
+    float spatialNodeOverlap = 0.1f;
     /// High quality: nodes with fewer references use object splits only. Measured on Sponza, the
     /// country kitchen and the bunny: the same SAH cost as spatial splits everywhere, half the build
     /// time on the bunny.
     int spatialMinRefs = 256;
     /// High quality, below this many triangles: the fast build is made too and kept if its wide tree
-    /// costs less. Above it, spatial splits won on every mesh measured (tests/test_bvh.cpp checks
-    /// the shared meshes), and the second build would add half the time.
-    size_t compareBuildsBelow = size_t(1) << 17;
+    /// costs less (it did on Suzanne, the teapot and the Cornell box). Above it, spatial splits won on
+    /// every mesh measured (the bunny narrowly; tests/test_bvh.cpp checks the shared meshes), and the
+    /// second build would add half the time.
+    size_t compareBuildsBelow = size_t(1) << 15;
     /// Nodes of at least this many references partition them on all threads (with the same result).
     uint32_t parallelPartitionMinRefs = 1u << 16;
 };
 
 /// The deepest a build goes; past kMedianDepth it splits at the object median, which bounds the depth.
 constexpr int kMaxBvhDepth = 64;
+
+/// The references a build over `primCount` primitives may use: with the spatial splits' duplicates.
+/// Callers that reserve it spare the build a copy of the references (and its page faults).
+size_t buildRefCapacity(size_t primCount, const BvhBuildConfig& config);
 
 /// Builds over one reference per primitive (at least one; ref.prim its index). At high quality the
 /// splitter clips primitives (without one the build is the fast one). Parallel with oneTBB; the

@@ -77,13 +77,12 @@ public:
 
     void build() {
         const uint32_t primCount = uint32_t(refs_.size());
-        const uint32_t capacity =
-            splitter_ ? primCount + uint32_t(double(primCount) * std::max(0.0f, config_.replicationBudget)) : primCount;
+        const uint32_t capacity = splitter_ ? uint32_t(buildRefCapacity(primCount, config_)) : primCount;
         refs_.resize(capacity);
         // Room for the most nodes a tree over `capacity` references can have, of which the build
         // touches only those it creates (zeroing all would be a single-threaded pass).
-        nodeStorage_.reset(new std::byte[(2 * size_t(capacity) - 1) * sizeof(BinaryNode)]);
-        nodes_ = reinterpret_cast<BinaryNode*>(nodeStorage_.get());
+        nodeStorage_.resize((2 * size_t(capacity) - 1) * sizeof(BinaryNode));
+        nodes_ = reinterpret_cast<BinaryNode*>(nodeStorage_.data());
         nodeCount_ = 1;
         BuildRange root = measured(0, primCount, capacity);
         rootHalfArea_ = root.bounds.halfArea();
@@ -158,7 +157,9 @@ private:
         if (splitter_ && range.spare() > 0 && count >= uint32_t(config_.spatialMinRefs)) {
             BuildBox overlap = object.left;
             overlap.intersect(object.right);
-            if (object.axis < 0 || overlap.halfArea() > config_.spatialOverlap * rootHalfArea_) {
+            const float overlapArea = overlap.halfArea();
+            if (object.axis < 0 || (overlapArea > config_.spatialOverlap * rootHalfArea_ &&
+                                    overlapArea > config_.spatialNodeOverlap * range.bounds.halfArea())) {
                 spatialMapping.emplace(range.bounds, config_.spatialBinCount);
                 SpatialBins spatialBins(spatialMapping->count);
                 binSpatially(range, *spatialMapping, spatialBins);
@@ -412,7 +413,7 @@ private:
     const BvhBuildConfig& config_;
     const TriangleSplitter* splitter_;
     BinaryBvh& out_;
-    std::unique_ptr<std::byte[]> nodeStorage_;
+    UninitializedVector<std::byte> nodeStorage_;
     BinaryNode* nodes_ = nullptr;
     float rootHalfArea_ = 0;
     /// Taken by every inner node on every thread: on a cache line of its own, so that its writes do
@@ -421,6 +422,11 @@ private:
 };
 
 } // namespace
+
+size_t buildRefCapacity(size_t primCount, const BvhBuildConfig& config) {
+    if (config.quality != BuildQuality::High) return primCount;
+    return primCount + size_t(double(primCount) * std::max(0.0f, config.replicationBudget));
+}
 
 BinaryBvh buildBinaryBvh(BuildRefs refs, const BvhBuildConfig& config, const TriangleSplitter* splitter) {
     assert(!refs.empty());

@@ -137,8 +137,10 @@ private:
 
 } // namespace
 
-BuildRefs triangleRefs(const TriangleMesh& mesh) {
-    BuildRefs refs(mesh.triangles.size());
+BuildRefs triangleRefs(const TriangleMesh& mesh, size_t capacity) {
+    BuildRefs refs;
+    refs.reserve(std::max(capacity, mesh.triangles.size()));
+    refs.resize(mesh.triangles.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, refs.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
             const glm::uvec3& t = mesh.triangles[i];
@@ -194,7 +196,8 @@ WideBvh<N> SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuil
                                 std::to_string(NodeRef::kFirstMask) + " blocks of " + std::to_string(kBlockSize) + ")");
     auto start = std::chrono::steady_clock::now();
     const TriangleSplitter splitter(mesh);
-    BinaryBvh binary = buildBinaryBvh(triangleRefs(mesh), config, &splitter);
+    BinaryBvh binary =
+        buildBinaryBvh(triangleRefs(mesh, buildRefCapacity(mesh.triangles.size(), config)), config, &splitter);
     timings_.binarySeconds += secondsSince(start);
 
     start = std::chrono::steady_clock::now();

@@ -67,7 +67,8 @@ private:
     BuildTimings timings_;
 };
 
-/// One build reference per triangle of the mesh, the builder's input.
-BuildRefs triangleRefs(const TriangleMesh& mesh);
+/// One build reference per triangle of the mesh, the builder's input, with room reserved for `capacity`
+/// (see buildRefCapacity).
+BuildRefs triangleRefs(const TriangleMesh& mesh, size_t capacity = 0);
 
 } // namespace wideray

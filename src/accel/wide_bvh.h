@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "accel/bvh_binary.h"
+#include "core/default_init_allocator.h"
 
 namespace wideray {
 
@@ -52,7 +53,7 @@ static_assert(sizeof(WideNode<8>) == 256);
 
 template <int N>
 struct WideBvh {
-    std::vector<WideNode<N>> nodes;
+    UninitializedVector<WideNode<N>> nodes;  ///< every node written whole by the collapse
     NodeRef root = NodeRef::empty();  ///< a leaf when the whole scene fits in one
     Bounds3f bounds;       ///< of the whole tree
 };

@@ -1,9 +1,11 @@
 #pragma once
 // An allocator whose resize leaves trivially constructible elements uninitialized: for the big arrays
 // the BVH builders fill in parallel right after sizing them, where zeroing first would cost a
-// single-threaded pass over memory (and its page faults).
+// single-threaded pass over memory (and its page faults). Large ones go to huge pages.
 #include <memory>
 #include <vector>
+
+#include "core/huge_pages.h"
 
 namespace wideray {
 
@@ -15,6 +17,15 @@ public:
         using other = DefaultInitAllocator<U>;
     };
     using std::allocator<T>::allocator;
+
+    T* allocate(size_t n) {
+        if (n * sizeof(T) < kHugePageMinBytes) return std::allocator<T>::allocate(n);
+        return static_cast<T*>(allocateHugePages(n * sizeof(T)));
+    }
+    void deallocate(T* p, size_t n) noexcept {
+        if (n * sizeof(T) < kHugePageMinBytes) std::allocator<T>::deallocate(p, n);
+        else freeHugePages(p);
+    }
 
     template <class U>
     void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
