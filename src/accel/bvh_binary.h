@@ -50,7 +50,10 @@ struct BvhBuildConfig {
     BuildQuality quality = BuildQuality::Fast;
     /// High quality: at most this many extra references, as a fraction of the primitives (Embree: 0.2).
     float replicationBudget = 0.2f;
-    int spatialBinCount = 16;
+    /// Spatial bins per axis. 8 against Embree's 16: the same SAH cost on the shared meshes (lower on
+    /// Sponza and the kitchen, +0.3% on the dragon), trace speed the same within noise (interiors,
+    /// single, packet16 and stream, two rounds), 10% less build time.
+    int spatialBinCount = 8;
     /// High quality: spatial splits are tried where the best object split's children overlap by more
     /// than this fraction of the root's area (Stich et al.'s alpha).
     float spatialOverlap = 1e-5f;
