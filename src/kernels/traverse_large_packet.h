@@ -225,12 +225,8 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
                 // From scratch: the sub-packets' results are the reference's whatever was found so far.
                 traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
                 if constexpr (Counting)
-                    for (int first = 0, s = 0; first < count; first += K, ++s)
-                        for (int i = 0; i < K && first + i < count; ++i) {
-                            costsOut[first + i].nodes += lp.costs[s].nodes[i];
-                            costsOut[first + i].leaves += lp.costs[s].leaves[i];
-                            costsOut[first + i].primitives += lp.costs[s].primitives[i];
-                        }
+                    for (int s = 0; s < lp.subCount; ++s)
+                        lp.costs[s].addTo(count - s * K < K ? count - s * K : K, costsOut + s * K);
                 return;
             }
             for (uint64_t bits = lp.anyValid; bits; bits &= bits - 1) {
