@@ -39,13 +39,14 @@ template <int N, int W>
 void boxTest(benchmark::State& state) {
     RandomFloats random;
     std::vector<WideNode<N>> nodes = randomNodes<N>(random);
-    std::vector<BoxRay> rays = randomBoxRays(random);
+    std::vector<ChildBoxTest<N, W>> tests;
+    for (const BoxRay& ray : randomBoxRays(random)) tests.emplace_back(ray);
     alignas(64) float tEntry[N];
     size_t i = 0;
     for (auto _ : state) {
         // Each pass over the nodes shifts the rays by one, so that every pair comes up.
-        const BoxRay& ray = rays[(i + i / kCount) % kCount];
-        uint32_t mask = intersectChildren<N, W>(nodes[i % kCount], ray, 0.0f, 1e30f, tEntry);
+        const ChildBoxTest<N, W>& intersectChildren = tests[(i + i / kCount) % kCount];
+        uint32_t mask = intersectChildren(nodes[i % kCount], 0.0f, 1e30f, tEntry);
         benchmark::DoNotOptimize(mask);
         benchmark::DoNotOptimize(tEntry);
         ++i;

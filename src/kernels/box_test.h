@@ -2,6 +2,7 @@
 // Ray against the N child boxes of a wide node (the slab test, Kay and Kajiya 1986), with the
 // reciprocal direction precomputed once per ray and near/far planes chosen once from its signs.
 #include <cstdint>
+#include <type_traits>
 
 #include "accel/wide_bvh.h"
 #include "simd/simd.h"
@@ -91,43 +92,54 @@ template <class Entry>
     stack[j] = e;
 }
 
-/// Tests all N children; returns the bit mask of those hit and writes their entry distances.
-/// W = 1 loops over the children with scalar floats (the reference); otherwise SIMD tests of W
-/// children at a time (W = N where the ISA is that wide).
+/// One ray's test of the N children of wide nodes, set up once per traversal: the six plane arrays
+/// picked by the ray's octant and the slab constants broadcast to W lanes. W = 1 loops over the
+/// children with scalar floats (the reference); otherwise SIMD tests of W children at a time (W = N
+/// where the ISA is that wide).
 template <int N, int W>
-inline uint32_t intersectChildren(const WideNode<N>& node, const BoxRay& r, float tnear, float tfar,
-                                  float* tEntryOut) {
-    const float* planes = node.lowerX;  // the six plane arrays, N floats each (WideNode::planes)
-    const float* nx = planes + r.nearPlane[0] * N;
-    const float* fx = planes + r.farPlane[0] * N;
-    const float* ny = planes + r.nearPlane[1] * N;
-    const float* fy = planes + r.farPlane[1] * N;
-    const float* nz = planes + r.nearPlane[2] * N;
-    const float* fz = planes + r.farPlane[2] * N;
-    if constexpr (W == 1) {
-        uint32_t mask = 0;
-        for (int i = 0; i < N; ++i) {
-            float tEntry, tExit;
-            slabInterval(nx[i], fx[i], ny[i], fy[i], nz[i], fz[i], r.slab, tnear, tfar, tEntry, tExit);
-            tEntryOut[i] = tEntry;
-            mask |= uint32_t(tEntry <= tExit) << i;
-        }
-        return mask;
-    } else {
-        static_assert(N % W == 0);
-        using F = simd::vfloat<W>;
-        const SlabRay<F> slab = broadcast<W>(r.slab);
-        uint32_t mask = 0;
-        for (int c = 0; c < N; c += W) {
-            F tEntry, tExit;
-            slabInterval(F::load(nx + c), F::load(fx + c), F::load(ny + c), F::load(fy + c), F::load(nz + c),
-                         F::load(fz + c), slab, F(tnear), F(tfar), tEntry, tExit);
-            tEntry.store(tEntryOut + c);
-            mask |= simd::movemask(tEntry <= tExit) << c;
-        }
-        return mask;
+struct ChildBoxTest {
+    using F = std::conditional_t<W == 1, float, simd::vfloat<W>>;
+    SlabRay<F> slab;
+    int nx, fx, ny, fy, nz, fz;  ///< offsets of the near and far plane arrays in WideNode::planes
+
+    explicit ChildBoxTest(const BoxRay& r)
+        : nx(r.nearPlane[0] * N), fx(r.farPlane[0] * N), ny(r.nearPlane[1] * N), fy(r.farPlane[1] * N),
+          nz(r.nearPlane[2] * N), fz(r.farPlane[2] * N) {
+        if constexpr (W == 1)
+            slab = r.slab;
+        else
+            slab = broadcast<W>(r.slab);
     }
-}
+
+    /// Returns the bit mask of the children hit and writes their entry distances.
+    [[gnu::always_inline]] uint32_t operator()(const WideNode<N>& node, float tnear, float tfar,
+                                               float* tEntryOut) const {
+        const float* planes = node.lowerX;  // the six plane arrays, N floats each (WideNode::planes)
+        if constexpr (W == 1) {
+            uint32_t mask = 0;
+            for (int i = 0; i < N; ++i) {
+                float tEntry, tExit;
+                slabInterval(planes[nx + i], planes[fx + i], planes[ny + i], planes[fy + i], planes[nz + i],
+                             planes[fz + i], slab, tnear, tfar, tEntry, tExit);
+                tEntryOut[i] = tEntry;
+                mask |= uint32_t(tEntry <= tExit) << i;
+            }
+            return mask;
+        } else {
+            static_assert(N % W == 0);
+            uint32_t mask = 0;
+            for (int c = 0; c < N; c += W) {
+                F tEntry, tExit;
+                slabInterval(F::load(planes + nx + c), F::load(planes + fx + c), F::load(planes + ny + c),
+                             F::load(planes + fy + c), F::load(planes + nz + c), F::load(planes + fz + c), slab,
+                             F(tnear), F(tfar), tEntry, tExit);
+                tEntry.store(tEntryOut + c);
+                mask |= simd::movemask(tEntry <= tExit) << c;
+            }
+            return mask;
+        }
+    }
+};
 
 } // namespace WIDERAY_ISA
 } // namespace wideray

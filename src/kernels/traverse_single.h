@@ -31,6 +31,7 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
         NodeRef ref;
         float distance;  ///< where the ray enters the subtree's box
     };
+    const ChildBoxTest<N, NodeW> intersectChildren(box);
     Entry stack[kStackSize<N>];
     int sp = 0;
     stack[sp++] = {root, tnear};
@@ -42,7 +43,7 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
             ++cost.nodes;
             const WideNode<N>& node = nodes[ref.index()];
             alignas(64) float tEntry[N];
-            uint32_t mask = intersectChildren<N, NodeW>(node, box, tnear, tfar(), tEntry);
+            uint32_t mask = intersectChildren(node, tnear, tfar(), tEntry);
             if (mask == 0) goto pop;
             const int first = __builtin_ctz(mask);
             mask &= mask - 1;
@@ -91,7 +92,10 @@ inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray
     bool occluded = false;
     traverseWide<N, NodeW, !AnyHit>(
         scene.nodes, root, s.box, ray.tnear, [&] { return hit.t; },
-        [&](NodeRef leaf) { return occluded = leaves.template single<TriW, AnyHit>(leaf, s, ray, hit, cost); }, cost);
+        [&](NodeRef leaf) __attribute__((always_inline)) {
+            return occluded = leaves.template single<TriW, AnyHit>(leaf, s, ray, hit, cost);
+        },
+        cost);
     return occluded;
 }
 

@@ -14,7 +14,7 @@ inline namespace WIDERAY_ISA {
 /// Tests one triangle block; closest-hit updates `hit` (and returns false), any-hit returns true
 /// at the first hit.
 template <int TriW, bool AnyHit>
-inline bool intersectBlock(const TriangleBlock<kBlockSize>& block, const SingleRayState& s, const Ray& ray,
+[[gnu::always_inline]] inline bool intersectBlock(const TriangleBlock<kBlockSize>& block, const SingleRayState& s, const Ray& ray,
                            Hit& hit) {
     if constexpr (TriW == 1) {
         for (int i = 0; i < kBlockSize && block.primId[i] != kInvalidId; ++i) {
@@ -29,21 +29,22 @@ inline bool intersectBlock(const TriangleBlock<kBlockSize>& block, const SingleR
         return false;
     } else {
         static_assert(TriW == kBlockSize);
-        // One ray: its axes are scalars, so the block's coordinate arrays are picked by pointer.
+        // One ray: its axes are scalars, so the block's coordinate arrays are picked by offset.
         using F = vfloat<TriW>;
         using I = vint<TriW>;
         const WatertightRay<float, int32_t>& w = s.woop;
-        const float* v0[3] = {block.v0x, block.v0y, block.v0z};
-        const float* v1[3] = {block.v1x, block.v1y, block.v1z};
-        const float* v2[3] = {block.v2x, block.v2y, block.v2z};
+        const float* c = block.coordinates();
+        const int kx = w.kx * TriW, ky = w.ky * TriW, kz = w.kz * TriW;
+        constexpr int v1 = 3 * TriW, v2 = 6 * TriW;
         const float o[3] = {w.ox, w.oy, w.oz};
         const F ox(o[w.kx]), oy(o[w.ky]), oz(o[w.kz]);
         auto valid = I::loadu(block.primId) != I(int32_t(kInvalidId));
         F t(0.0f), u(0.0f), v(0.0f);
         auto h = intersectWatertightPermuted(
-            F(w.sx), F(w.sy), F(w.sz), valid, F::load(v0[w.kx]) - ox, F::load(v0[w.ky]) - oy, F::load(v0[w.kz]) - oz,
-            F::load(v1[w.kx]) - ox, F::load(v1[w.ky]) - oy, F::load(v1[w.kz]) - oz, F::load(v2[w.kx]) - ox,
-            F::load(v2[w.ky]) - oy, F::load(v2[w.kz]) - oz, F(ray.tnear), F(hit.t), t, u, v);
+            F(w.sx), F(w.sy), F(w.sz), valid, F::load(c + kx) - ox, F::load(c + ky) - oy, F::load(c + kz) - oz,
+            F::load(c + v1 + kx) - ox, F::load(c + v1 + ky) - oy, F::load(c + v1 + kz) - oz,
+            F::load(c + v2 + kx) - ox, F::load(c + v2 + ky) - oy, F::load(c + v2 + kz) - oz, F(ray.tnear),
+            F(hit.t), t, u, v);
         uint32_t lanes = movemask(h);
         if (!lanes) return false;
         if constexpr (AnyHit) return true;
