@@ -1,6 +1,6 @@
 // The whole build of our acceleration structure (binned SAH binary BVH, collapse to 8 wide, leaf
 // blocks; accel/scene_accel.h) by mesh size: generated icospheres and tori, then the shared meshes
-// that are present. The build runs on all hardware threads through oneTBB, with flush-to-zero and
+// that are present, each with the fast and the high-quality (spatial splits, name ending in /high) build. The build runs on all hardware threads through oneTBB, with flush-to-zero and
 // denormals-are-zero as in wideray's commands and library.
 #include <benchmark/benchmark.h>
 
@@ -16,13 +16,15 @@
 namespace wideray::perf {
 namespace {
 
-void buildAccel(benchmark::State& state, const TriangleMesh& mesh) {
+void buildAccel(benchmark::State& state, const TriangleMesh& mesh, BuildQuality quality = BuildQuality::Fast) {
     FlushToZeroScope ftz;
+    BvhBuildConfig config = SceneAccel<8>::defaultConfig();
+    config.quality = quality;
     size_t bytes = 0;
     auto geometry = std::make_shared<const SceneGeometry>(mesh);
     for (auto _ : state) {
         ftz.run([&] {
-            SceneAccel<8> accel(geometry);
+            SceneAccel<8> accel(geometry, config);
             bytes = accel.bytes();
             benchmark::DoNotOptimize(bytes);
         });
@@ -59,14 +61,20 @@ BENCHMARK(buildTorus)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
-void buildShared(benchmark::State& state, std::filesystem::path file) { buildAccel(state, cachedMesh(file)); }
+void buildShared(benchmark::State& state, std::filesystem::path file, BuildQuality quality) {
+    buildAccel(state, cachedMesh(file), quality);
+}
 
 [[maybe_unused]] const bool registerSharedMeshes = [] {
     for (const char* relative : kSharedMeshes)
         if (auto file = sharedMeshPath(relative))
-            benchmark::RegisterBenchmark(("bvhBuild/shared/" + file->filename().string()).c_str(), buildShared, *file)
-                ->Unit(benchmark::kMillisecond)
-                ->UseRealTime();
+            for (BuildQuality quality : {BuildQuality::Fast, BuildQuality::High})
+                benchmark::RegisterBenchmark(("bvhBuild/shared/" + file->filename().string() +
+                                              (quality == BuildQuality::High ? "/high" : ""))
+                                                 .c_str(),
+                                             buildShared, *file, quality)
+                    ->Unit(benchmark::kMillisecond)
+                    ->UseRealTime();
     return true;
 }();
 
