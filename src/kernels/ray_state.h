@@ -193,15 +193,6 @@ struct PacketCost {
         if constexpr (Counting)
             for (int i = 0; i < count; ++i) out[i] = {nodes[i], leaves[i], primitives[i]};
     }
-    /// Adds the counts to `out`: work done before another traversal took the rays over.
-    void addTo(int count, TraversalCost* out) const {
-        if constexpr (Counting)
-            for (int i = 0; i < count; ++i) {
-                out[i].nodes += nodes[i];
-                out[i].leaves += leaves[i];
-                out[i].primitives += primitives[i];
-            }
-    }
 };
 
 /// The closest hit of one lane so far.

@@ -72,21 +72,18 @@ inline void writePacketResults(const PacketHit<K>& h, const UserHits& user, uint
     }
 }
 
-/// Closest hits (or occlusion) of up to K rays, and their costs with `Counting`. At most K / 4
-/// active rays finish a subtree one by one.
-template <int N, int K, bool AnyHit, bool Counting, class Leaves>
-inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
-                               uint8_t* occludedOut, TraversalCost* costsOut) {
+/// Traces a loaded packet of K rays (`rays` its rays) from the root, starting from its state as it
+/// stands: `h` the hits so far (closest hit), `done` the lanes whose answer is known (any-hit: invalid
+/// or occluded). A packet that already found hits culls by them and ends with the reference's
+/// answer all the same. At most K / 4 active rays finish a subtree one by one.
+template <int N, int K, bool AnyHit, class Leaves, class Cost>
+inline void traversePacket(const SceneView<N>& scene, const Ray* rays, const PacketRay<K>& p, PacketHit<K>& h,
+                           PacketUserHits<K>& user, vbool<K>& done, Cost& cost) {
     using F = vfloat<K>;
     constexpr int switchToSingle = K / 4;
     const Leaves leaves{scene.leaves};
-    PacketRay<K> p;
-    PacketHit<K> h;
-    PacketUserHits<K> user(rays);
-    PacketCost<K, Counting> cost;
-    const vbool<K> valid = loadPacket(rays, count, p, h);
-    vbool<K> done = andNot(vbool<K>(true), valid);  // any-hit: lanes whose answer is known
     const F inf(__builtin_huge_valf());
+    const vbool<K> valid = andNot(vbool<K>(true), done);
 
     struct alignas(64) Entry {
         F entry;         ///< per ray: where it enters the subtree's box (+inf: it does not)
@@ -165,6 +162,20 @@ inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int c
         }
     pop:;
     }
+}
+
+/// Closest hits (or occlusion) of up to K rays, and their costs with `Counting`.
+template <int N, int K, bool AnyHit, bool Counting, class Leaves>
+inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
+                               uint8_t* occludedOut, TraversalCost* costsOut) {
+    using F = vfloat<K>;
+    PacketRay<K> p;
+    PacketHit<K> h;
+    PacketUserHits<K> user(rays);
+    PacketCost<K, Counting> cost;
+    const vbool<K> valid = loadPacket(rays, count, p, h);
+    vbool<K> done = andNot(vbool<K>(true), valid);
+    traversePacket<N, K, AnyHit, Leaves>(scene, rays, p, h, user, done, cost);
     writePacketResults<K, AnyHit>(h, user, movemask(valid), movemask(h.t == F(-__builtin_huge_valf())), count,
                                   hitsOut, occludedOut);
     cost.write(count, costsOut);
