@@ -75,10 +75,12 @@ inline void writePacketResults(const PacketHit<K>& h, const UserHits& user, uint
 /// Traces a loaded packet of K rays (`rays` its rays) from the root, starting from its state as it
 /// stands: `h` the hits so far (closest hit), `done` the lanes whose answer is known (any-hit: invalid
 /// or occluded). A packet that already found hits culls by them and ends with the reference's
-/// answer all the same. At most K / 4 active rays finish a subtree one by one.
+/// answer all the same. At most K / 4 active rays finish a subtree one by one. Inlined, so that the
+/// packet's hits stay in registers.
 template <int N, int K, bool AnyHit, class Leaves, class Cost>
-inline void traversePacket(const SceneView<N>& scene, const Ray* rays, const PacketRay<K>& p, PacketHit<K>& h,
-                           PacketUserHits<K>& user, vbool<K>& done, Cost& cost) {
+[[gnu::always_inline]] inline void traversePacket(const SceneView<N>& scene, const Ray* rays, const PacketRay<K>& p,
+                                                  PacketHit<K>& h, PacketUserHits<K>& user, vbool<K>& done,
+                                                  Cost& cost) {
     using F = vfloat<K>;
     constexpr int switchToSingle = K / 4;
     const Leaves leaves{scene.leaves};
