@@ -1,7 +1,8 @@
 // The whole build of our acceleration structure (binned SAH binary BVH, collapse to 8 wide, leaf
 // blocks; accel/scene_accel.h) by mesh size: generated icospheres and tori, then the shared meshes
-// that are present, each with the fast and the high-quality (spatial splits, name ending in /high) build. The build runs on all hardware threads through oneTBB, with flush-to-zero and
-// denormals-are-zero as in wideray's commands and library.
+// that are present, each built fast and at high quality (spatial splits; names ending in /high). The
+// build runs on all hardware threads through oneTBB, with flush-to-zero and denormals-are-zero as in
+// wideray's commands and library.
 #include <benchmark/benchmark.h>
 
 #include <memory>

@@ -164,11 +164,12 @@ inline bool narrowEnough(const RayInterval& iv) {
 /// Leaves a large packet may enter before it gives up on interval culling. Where leaves are small
 /// against the packet's beam (the country kitchen from its camera: 690 leaves entered per packet, 0.4%
 /// of the sub-packets' leaf box tests hit), interval culling visits far more than the rays need; such
-/// packets go on as K-wide packets from the root, culling by the hits found so far. Measured (camera / shadow rays, 512x512): the kitchen
-/// interior 13.3 -> 27.1 / 3.5 -> 57.0 Mrays/s, the Sponza interior 30.4 -> 25.5 / 26.0 -> 23.8 (it
-/// averages 53 leaves per packet), framed meshes unchanged; 128 and 256 kept less of the kitchen's
-/// gain and not more of Sponza's. Going on with the hits so far instead of from scratch: leaves per
-/// camera ray 1.98 -> 1.87 (kitchen), 4.04 -> 3.90 (Sponza), shadow rays 2.16 -> 1.90 (Sponza).
+/// packets go on as K-wide packets from the root, culling by the hits found so far. Measured (camera /
+/// shadow rays, 512x512): the kitchen interior 13.3 -> 27.1 / 3.5 -> 57.0 Mrays/s, the Sponza interior
+/// 30.4 -> 25.5 / 26.0 -> 23.8 (it averages 53 leaves per packet), framed meshes unchanged; 128 and 256
+/// kept less of the kitchen's gain and not more of Sponza's. Going on with the hits so far instead of
+/// from scratch: leaves per camera ray 1.98 -> 1.87 (kitchen), 4.04 -> 3.90 (Sponza), per shadow ray
+/// 2.16 -> 1.90 (Sponza).
 constexpr int kLargePacketLeafBudget = 64;
 
 /// Closest hits (or occlusion) of up to K * P rays, P sub-packets of K, and their costs with
