@@ -58,7 +58,7 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
         // The scene's leaf intersector, but remembering the block that blocked the ray.
         traverseWide<N, kNodeSimdWidth<N>, false>(
             scene.nodes, scene.root, s.box, ray.tnear, [&] { return hit.t; },
-            [&](NodeRef leaf) {
+            [&](NodeRef leaf) __attribute__((always_inline)) {
                 if (leaf.isUserLeaf()) return blocked = intersectUserLeaf<N, true>(leaves, leaf, ray, hit, cost);
                 for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b)
                     if (intersectBlock<kBlockSize, true>(leaves.blocks[b], s, ray, hit)) {

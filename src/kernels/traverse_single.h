@@ -23,7 +23,8 @@ constexpr int kNodeSimdWidth = N < kMaxWidth ? N : kMaxWidth;
 
 /// Visits the leaves a ray reaches, nearest subtree first (with Ordered; otherwise in node order, which
 /// any-hit traversal prefers: any occluder will do). `leaf(ref)` returns true to stop (any-hit);
-/// `tfar()` is the current culling distance.
+/// `tfar()` is the current culling distance. Callers mark `leaf` always_inline: as a call it costs a
+/// vzeroupper and the node test's set-up again after every leaf.
 template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn>
 inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, TfarFn tfar,
                          LeafFn leaf, TraversalCost& cost) {

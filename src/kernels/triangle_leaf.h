@@ -14,8 +14,8 @@ inline namespace WIDERAY_ISA {
 /// Tests one triangle block; closest-hit updates `hit` (and returns false), any-hit returns true
 /// at the first hit.
 template <int TriW, bool AnyHit>
-[[gnu::always_inline]] inline bool intersectBlock(const TriangleBlock<kBlockSize>& block, const SingleRayState& s, const Ray& ray,
-                           Hit& hit) {
+[[gnu::always_inline]] inline bool intersectBlock(const TriangleBlock<kBlockSize>& block, const SingleRayState& s,
+                                                  const Ray& ray, Hit& hit) {
     if constexpr (TriW == 1) {
         for (int i = 0; i < kBlockSize && block.primId[i] != kInvalidId; ++i) {
             float t = 0, u = 0, v = 0;
