@@ -195,15 +195,20 @@ public:
     }
 
 private:
-    /// What the dynamic program knows of one binary node.
-    /// Left uninitialized until solve() writes it (there are as many as binary nodes).
+    /// What the dynamic program decided for one binary node (20 bytes for N = 8: there are as many as
+    /// binary nodes, and each is written once and read by the tree's writer). Left uninitialized until
+    /// solve() writes it.
     struct Plan {
         uint32_t begin, count;  ///< the subtree's primitives, contiguous in primIndices
         bool leaf;              ///< as a child slot: a leaf (else a wide node)
-        float slot;             ///< the subtree's cost in one child slot
-        float forest[N + 1];    ///< forest[j]: its cost in at most j slots (j >= 1)
-        uint8_t split[N + 1];   ///< forest[j] splits into (split[j], j - split[j]) of the children; 0: one slot
         uint8_t nodeSplit;      ///< as a wide node: its N slots split (nodeSplit, N - nodeSplit) between the children
+        uint8_t split[N + 1];   ///< in at most j slots it splits into (split[j], j - split[j]) of the children; 0: one slot
+    };
+    static_assert(sizeof(Plan) == 4 * ((10 + N + 1 + 3) / 4));
+    /// A subtree's costs, which only its parent reads: cost[j] in at most j slots (j >= 1); cost[1] is
+    /// its cost in one child slot.
+    struct Forest {
+        float cost[N + 1];
     };
 
     uint32_t blocksOf(uint32_t count) const {
@@ -211,35 +216,36 @@ private:
     }
 
     /// Children before parents, the two subtrees as tasks near the root.
-    void solve(uint32_t i, int depth) {
+    Forest solve(uint32_t i, int depth) {
         const BinaryNode& node = binary_.nodes[i];
         Plan& plan = plans_[i];
         const float area = node.bounds.area();
+        Forest forest;
         if (node.isLeaf()) {
             plan.begin = node.first;
             plan.count = node.count;
             plan.leaf = true;
             plan.nodeSplit = 0;
-            plan.slot = config_.intersectionCost * float(blocksOf(node.count)) * area;
-            for (int j = 1; j <= N; ++j) plan.forest[j] = plan.slot, plan.split[j] = 0;
-            return;
+            const float slot = config_.intersectionCost * float(blocksOf(node.count)) * area;
+            for (int j = 1; j <= N; ++j) forest.cost[j] = slot, plan.split[j] = 0;
+            return forest;
         }
+        Forest l, r;
         if (depth < kTaskDepth)
-            tbb::parallel_invoke([&] { solve(node.first, depth + 1); }, [&] { solve(node.first + 1, depth + 1); });
+            tbb::parallel_invoke([&] { l = solve(node.first, depth + 1); }, [&] { r = solve(node.first + 1, depth + 1); });
         else {
-            solve(node.first, depth + 1);
-            solve(node.first + 1, depth + 1);
+            l = solve(node.first, depth + 1);
+            r = solve(node.first + 1, depth + 1);
         }
         // A leaf made of a dissolved subtree holds at most this many blocks (and at most what one wide
         // leaf can address).
         const uint32_t maxMergedBlocks = std::min<uint32_t>(NodeRef::kMaxLeafItems, 4);
-        const Plan &l = plans_[node.first], &r = plans_[node.first + 1];
-        plan.begin = l.begin;
-        plan.count = l.count + r.count;
+        plan.begin = plans_[node.first].begin;
+        plan.count = plans_[node.first].count + plans_[node.first + 1].count;
         float inner = std::numeric_limits<float>::infinity();
         for (int k = 1; k < N; ++k)
-            if (l.forest[k] + r.forest[N - k] < inner) {
-                inner = l.forest[k] + r.forest[N - k];
+            if (l.cost[k] + r.cost[N - k] < inner) {
+                inner = l.cost[k] + r.cost[N - k];
                 plan.nodeSplit = uint8_t(k);
             }
         inner += config_.traversalCost * area;
@@ -247,18 +253,18 @@ private:
         const float leaf = blocks <= maxMergedBlocks ? config_.intersectionCost * float(blocks) * area
                                                      : std::numeric_limits<float>::infinity();
         plan.leaf = leaf <= inner;
-        plan.slot = plan.leaf ? leaf : inner;
-        plan.forest[1] = plan.slot;
+        forest.cost[1] = plan.leaf ? leaf : inner;
         plan.split[1] = 0;
         for (int j = 2; j <= N; ++j) {
-            plan.forest[j] = plan.slot;
+            forest.cost[j] = forest.cost[1];
             plan.split[j] = 0;
             for (int k = 1; k < j; ++k)
-                if (l.forest[k] + r.forest[j - k] < plan.forest[j]) {
-                    plan.forest[j] = l.forest[k] + r.forest[j - k];
+                if (l.cost[k] + r.cost[j - k] < forest.cost[j]) {
+                    forest.cost[j] = l.cost[k] + r.cost[j - k];
                     plan.split[j] = uint8_t(k);
                 }
         }
+        return forest;
     }
 
     /// The binary nodes that take the `slots` child slots of subtree `index`, as the plan splits it.

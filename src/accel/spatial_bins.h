@@ -16,28 +16,28 @@ constexpr int kMaxSpatialBins = 32;
 /// is position(axis, b).
 struct SpatialBinMapping {
     int count = 0;
-    __m128 offset, scale, width;
+    __m128 offset, scale;
     int splittableAxes = 0;
+    float planes[3][kMaxSpatialBins + 1];  ///< [axis][bin]: the bin's lower plane
 
     SpatialBinMapping(const BuildBox& bounds, int binCount) : count(binCount) {
         offset = bounds.lower;
         const __m128 extent = _mm_sub_ps(bounds.upper, bounds.lower);
         const __m128 spread = _mm_cmpgt_ps(extent, _mm_setzero_ps());
         scale = _mm_and_ps(spread, _mm_div_ps(_mm_set1_ps(float(count)), extent));
-        width = _mm_mul_ps(extent, _mm_set1_ps(1.0f / float(count)));
+        const __m128 width = _mm_mul_ps(extent, _mm_set1_ps(1.0f / float(count)));
         splittableAxes = _mm_movemask_ps(spread) & 7;
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b <= count; ++b)
+                planes[a][b] = BuildBox::lane(offset, a) + float(b) * BuildBox::lane(width, a);
     }
-
-    bool splittable(int axis) const { return splittableAxes >> axis & 1; }
 
     __m128i binOf(__m128 p) const {
         const __m128i bin = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(p, offset), scale));
         return _mm_min_epi32(_mm_max_epi32(bin, _mm_setzero_si128()), _mm_set1_epi32(count - 1));
     }
 
-    float position(int axis, int bin) const {
-        return BuildBox::lane(offset, axis) + float(bin) * BuildBox::lane(width, axis);
-    }
+    float position(int axis, int bin) const { return planes[axis][bin]; }
 };
 
 /// The best spatial split: the plane between bins `bin` and `bin + 1` along `axis`.
@@ -63,29 +63,49 @@ struct SpatialBins {
     BuildBox box(int axis, int bin) const { return boxes.box(axis, bin); }
 
     void add(const BuildRef* refs, size_t refCount, const SpatialBinMapping& mapping, const TriangleSplitter& splitter) {
-        for (size_t i = 0; i < refCount; ++i) {
-            const BuildBox box(refs[i]);
-            alignas(16) int32_t first[4], last[4];
-            _mm_store_si128(reinterpret_cast<__m128i*>(first), mapping.binOf(box.lower));
-            _mm_store_si128(reinterpret_cast<__m128i*>(last), mapping.binOf(box.upper));
-            const bool spansBins = (_mm_movemask_ps(_mm_castsi128_ps(
-                                        _mm_cmpeq_epi32(_mm_load_si128(reinterpret_cast<const __m128i*>(first)),
-                                                        _mm_load_si128(reinterpret_cast<const __m128i*>(last))))) &
-                                    7) != 7;
-            const SplitTriangle triangle = spansBins ? splitter.triangle(refs[i].prim) : SplitTriangle({}, {}, {});
-            for (int a = 0; a < 3; ++a) {
-                if (!mapping.splittable(a)) continue;
-                ++enter[first[a]][a];
-                ++exit[last[a]][a];
-                BuildBox rest = box;
-                for (int b = first[a]; b < last[a]; ++b) {
-                    BuildBox left, right;
-                    triangle.split(rest, a, mapping.position(a, b + 1), left, right);
-                    boxes.grow(a, b, left);
-                    rest = right;
-                }
-                boxes.grow(a, last[a], rest);
+        if (refCount < kInterleaveThreshold) {
+            for (size_t i = 0; i < refCount; ++i) add(refs[i], mapping, splitter);
+            return;
+        }
+        // As ObjectBins::add: neighbours mostly share bins, so odd and even references go to two
+        // bin sets, which breaks the chain of updates through memory.
+        SpatialBins odd(count);
+        size_t i = 0;
+        for (; i + 1 < refCount; i += 2) {
+            add(refs[i], mapping, splitter);
+            odd.add(refs[i + 1], mapping, splitter);
+        }
+        if (i < refCount) add(refs[i], mapping, splitter);
+        merge(odd);
+    }
+
+    /// Counts the reference where it starts and ends along each axis, and grows each bin it overlaps
+    /// by the part of its triangle inside. Axes that are not splittable have all references in bin 0,
+    /// which the sweep ignores.
+    void add(const BuildRef& ref, const SpatialBinMapping& mapping, const TriangleSplitter& splitter) {
+        const BuildBox box(ref);
+        const __m128i firstBins = mapping.binOf(box.lower), lastBins = mapping.binOf(box.upper);
+        alignas(16) int32_t first[4], last[4];
+        _mm_store_si128(reinterpret_cast<__m128i*>(first), firstBins);
+        _mm_store_si128(reinterpret_cast<__m128i*>(last), lastBins);
+        for (int a = 0; a < 3; ++a) {
+            ++enter[first[a]][a];
+            ++exit[last[a]][a];
+        }
+        if ((_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(firstBins, lastBins))) & 7) == 7) {
+            for (int a = 0; a < 3; ++a) boxes.grow(a, first[a], box);  // inside one bin: nothing to clip
+            return;
+        }
+        const SplitTriangle triangle = splitter.triangle(ref.prim);
+        for (int a = 0; a < 3; ++a) {
+            BuildBox rest = box;
+            for (int b = first[a]; b < last[a]; ++b) {
+                BuildBox left, right;
+                triangle.split(rest, a, mapping.position(a, b + 1), left, right);
+                boxes.grow(a, b, left);
+                rest = right;
             }
+            boxes.grow(a, last[a], rest);
         }
     }
 

@@ -45,8 +45,8 @@ public:
         addVertexAndEdge<2>(sides, left, right);
         left.intersect(box);
         right.intersect(box);
-        if (left.empty()) left = BuildBox();
-        if (right.empty()) right = BuildBox();
+        left = canonical(left);
+        right = canonical(right);
     }
 
 private:
@@ -55,6 +55,16 @@ private:
     struct Sides {
         __m128 below, above, crosses, t, plane, onAxis;
     };
+
+    /// An empty box as BuildBox() has it (a part outside `box` can come out inverted on some axes
+    /// only), without a branch: the binning grows bins by these parts.
+    static BuildBox canonical(const BuildBox& b) {
+        __m128 inverted = _mm_blend_ps(_mm_cmpgt_ps(b.lower, b.upper), _mm_setzero_ps(), 8);
+        inverted = _mm_or_ps(inverted, _mm_shuffle_ps(inverted, inverted, _MM_SHUFFLE(1, 0, 3, 2)));
+        inverted = _mm_or_ps(inverted, _mm_shuffle_ps(inverted, inverted, _MM_SHUFFLE(2, 3, 0, 1)));
+        const BuildBox empty;
+        return {_mm_blendv_ps(b.lower, empty.lower, inverted), _mm_blendv_ps(b.upper, empty.upper, inverted)};
+    }
 
     template <int I>
     static __m128 broadcast(__m128 v) {
