@@ -6,6 +6,7 @@
 
 #include "accel/bvh_view.h"
 #include "kernels/box_test.h"
+#include "kernels/child_order.h"
 #include "kernels/hit_order.h"
 #include "kernels/leaf_intersector.h"
 
@@ -14,8 +15,9 @@
 namespace wideray {
 inline namespace WIDERAY_ISA {
 
+/// The deepest a single ray's stack gets, and room for the N entries pushNearestLast stores at once.
 template <int N>
-constexpr int kStackSize = kMaxBvhDepth * (N - 1) + 1;
+constexpr int kStackSize = kMaxBvhDepth * (N - 1) + 1 + N;
 
 /// How many children of an N-wide node one SIMD box test covers in this ISA.
 template <int N>
@@ -69,15 +71,7 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
                 ref = node.child[nearer];
                 continue;
             }
-            // Three or more: push them sorted farthest first, then take the nearest.
-            const int base = sp;
-            pushSorted(stack, base, sp, Entry{node.child[first], tEntry[first]});
-            pushSorted(stack, base, sp, Entry{node.child[second], tEntry[second]});
-            for (; mask; mask &= mask - 1) {
-                int i = __builtin_ctz(mask);
-                pushSorted(stack, base, sp, Entry{node.child[i], tEntry[i]});
-            }
-            ref = stack[--sp].ref;
+            ref = pushNearestLast(stack, sp, node, mask | 1u << first | 1u << second, tEntry);  // three or more
         }
         if (leaf(ref)) return;
     pop:;
