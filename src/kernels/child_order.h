@@ -7,6 +7,7 @@
 // no predictor learns); the others insert one child at a time.
 #include <bit>
 #include <climits>
+#include <cstddef>
 #include <cstdint>
 
 #include "accel/wide_bvh.h"
@@ -51,14 +52,17 @@ template <int MaxLanes>
 }
 #endif
 
-/// Pushes the children in `mask` (three or more) with their entry distances, farthest first, and pops
-/// the nearest: the caller descends into it. The stack needs room for N entries beyond sp.
+/// Pushes the children in `mask` (three or more) with their entry distances (tEntry, 32-byte aligned),
+/// farthest first, and returns the nearest, which the caller descends into. Entry is {NodeRef ref;
+/// float distance;}; the stack needs room for N entries beyond sp.
 template <int N, class Entry>
 [[gnu::always_inline]] inline NodeRef pushNearestLast(Entry* stack, int& sp, const WideNode<N>& node, uint32_t mask,
                                                       const float* tEntry) {
     static_assert(N <= 8, "three bits of the key hold the slot");
 #if defined(__AVX2__)
-    if constexpr (N == 8 && sizeof(Entry) == 8) {
+    if constexpr (N == 8) {
+        static_assert(sizeof(Entry) == 8 && offsetof(Entry, distance) == sizeof(NodeRef),
+                      "the stores write (ref, distance) pairs");
         const __m256i bits = _mm256_castps_si256(_mm256_load_ps(tEntry));
         const __m256i ordered = _mm256_xor_si256(bits, _mm256_srli_epi32(_mm256_srai_epi32(bits, 31), 1));
         const __m256i slotBits = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
@@ -70,7 +74,8 @@ template <int N, class Entry>
         const int nearest = minimum(_mm256_blendv_epi8(_mm256_set1_epi32(INT_MAX), keys, hit)) & 7;
         keys = _mm256_blendv_epi8(_mm256_set1_epi32(INT_MIN), keys, hit);  // the slots missed sort last
         const __m256i slots = _mm256_and_si256(sortDescending(keys), _mm256_set1_epi32(7));
-        const __m256i refs = _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(node.child)), slots);
+        const __m256i children = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
+        const __m256i refs = _mm256_permutevar8x32_epi32(children, slots);
         const __m256i distances = _mm256_permutevar8x32_epi32(bits, slots);
         const __m256i low = _mm256_unpacklo_epi32(refs, distances), high = _mm256_unpackhi_epi32(refs, distances);
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(stack + sp), _mm256_permute2x128_si256(low, high, 0x20));
