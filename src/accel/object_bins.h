@@ -12,6 +12,25 @@ namespace wideray {
 constexpr int kMaxObjectBins = 64;
 constexpr size_t kInterleaveThreshold = 256;
 
+/// Calls add(bins, i) for i in [0, refCount). Neighbouring references mostly fall in the same bins
+/// (partitions keep them spatially sorted), which chains each bin update to the previous one through
+/// memory: above kInterleaveThreshold, odd and even references go to two bin sets, merged at the end.
+template <class Bins, class Add>
+[[gnu::always_inline]] inline void addInterleaved(Bins& bins, size_t refCount, Add add) {
+    if (refCount < kInterleaveThreshold) {
+        for (size_t i = 0; i < refCount; ++i) add(bins, i);
+        return;
+    }
+    Bins odd(bins.count);
+    size_t i = 0;
+    for (; i + 1 < refCount; i += 2) {
+        add(bins, i);
+        add(odd, i + 1);
+    }
+    if (i < refCount) add(bins, i);
+    bins.merge(odd);
+}
+
 /// The plane of least SAH cost that sweepPlanes found (axis -1: none with references on both sides).
 struct BestPlane {
     int axis = -1;
@@ -130,21 +149,7 @@ struct ObjectBins {
 
     /// Bins the references and writes each one's bins into it (BuildRef::bins).
     void add(BuildRef* refs, size_t refCount, const ObjectBinMapping& mapping) {
-        if (refCount < kInterleaveThreshold) {
-            for (size_t i = 0; i < refCount; ++i) add(refs[i], mapping);
-            return;
-        }
-        // Neighbouring references mostly fall in the same bins (partitions keep them spatially
-        // sorted), which chains each bin update to the previous one through memory: odd and even
-        // references go to two bin sets, merged at the end.
-        ObjectBins odd(count);
-        size_t i = 0;
-        for (; i + 1 < refCount; i += 2) {
-            add(refs[i], mapping);
-            odd.add(refs[i + 1], mapping);
-        }
-        if (i < refCount) add(refs[i], mapping);
-        merge(odd);
+        addInterleaved(*this, refCount, [&](ObjectBins& bins, size_t i) { bins.add(refs[i], mapping); });
     }
 
     void add(BuildRef& ref, const ObjectBinMapping& mapping) {

@@ -63,20 +63,7 @@ struct SpatialBins {
     BuildBox box(int axis, int bin) const { return boxes.box(axis, bin); }
 
     void add(const BuildRef* refs, size_t refCount, const SpatialBinMapping& mapping, const TriangleSplitter& splitter) {
-        if (refCount < kInterleaveThreshold) {
-            for (size_t i = 0; i < refCount; ++i) add(refs[i], mapping, splitter);
-            return;
-        }
-        // As ObjectBins::add: neighbours mostly share bins, so odd and even references go to two
-        // bin sets, which breaks the chain of updates through memory.
-        SpatialBins odd(count);
-        size_t i = 0;
-        for (; i + 1 < refCount; i += 2) {
-            add(refs[i], mapping, splitter);
-            odd.add(refs[i + 1], mapping, splitter);
-        }
-        if (i < refCount) add(refs[i], mapping, splitter);
-        merge(odd);
+        addInterleaved(*this, refCount, [&](SpatialBins& bins, size_t i) { bins.add(refs[i], mapping, splitter); });
     }
 
     /// Counts the reference where it starts and ends along each axis, and grows each bin it overlaps

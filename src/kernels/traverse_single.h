@@ -15,9 +15,8 @@
 namespace wideray {
 inline namespace WIDERAY_ISA {
 
-/// The deepest a single ray's stack gets, and room for the N entries pushNearestLast stores at once.
 template <int N>
-constexpr int kStackSize = kMaxBvhDepth * (N - 1) + 1 + N;
+constexpr int kStackSize = kMaxBvhDepth * (N - 1) + 1;
 
 /// How many children of an N-wide node one SIMD box test covers in this ISA.
 template <int N>
@@ -35,7 +34,7 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
         float distance;  ///< where the ray enters the subtree's box
     };
     const ChildBoxTest<N, NodeW> intersectChildren(box);
-    Entry stack[kStackSize<N>];
+    Entry stack[kStackSize<N> + N];  // room for the N entries pushNearestLast stores at once
     int sp = 0;
     stack[sp++] = {root, tnear};
     while (sp > 0) {
@@ -46,8 +45,9 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
             ++cost.nodes;
             const WideNode<N>& node = nodes[ref.index()];
             alignas(64) float tEntry[N];
-            uint32_t mask = intersectChildren(node, tnear, tfar(), tEntry);
-            if (mask == 0) goto pop;
+            const uint32_t hits = intersectChildren(node, tnear, tfar(), tEntry);
+            if (hits == 0) goto pop;
+            uint32_t mask = hits;
             const int first = __builtin_ctz(mask);
             mask &= mask - 1;
             if (mask == 0) {
@@ -71,7 +71,7 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
                 ref = node.child[nearer];
                 continue;
             }
-            ref = pushNearestLast(stack, sp, node, mask | 1u << first | 1u << second, tEntry);  // three or more
+            ref = pushNearestLast(stack, sp, node, hits, tEntry);  // three or more
         }
         if (leaf(ref)) return;
     pop:;
