@@ -13,45 +13,6 @@
 namespace wideray {
 inline namespace WIDERAY_ISA {
 
-/// Bounds of the packet's rays, per axis: origins and reciprocal directions (all of one sign).
-struct RayInterval {
-    float oLo[3], oHi[3], rdLo[3], rdHi[3];
-    bool neg[3];
-    float tnear;
-};
-
-/// Interval test of all N children of a node. The bounds are widened by 2^-16 relative, far more
-/// than the rounding of the interval products, so that no child that one of the rays enters is lost.
-template <int N>
-[[gnu::always_inline]] inline uint32_t intersectChildrenInterval(const WideNode<N>& node, const RayInterval& r,
-                                                                 float tfarMax, float* tEntryOut) {
-    constexpr int W = kNodeSimdWidth<N>;
-    using F = vfloat<W>;
-    uint32_t mask = 0;
-    for (int c = 0; c < N; c += W) {
-        F entry(r.tnear), exit(tfarMax);
-        for (int a = 0; a < 3; ++a) {
-            const float* nearPlane = node.planes(a, r.neg[a]) + c;
-            const float* farPlane = node.planes(a, !r.neg[a]) + c;
-            // (plane - o) * rd over o in [oLo, oHi] and rd in [rdLo, rdHi]: the extremes are among
-            // the four endpoint products.
-            F nLo = F::load(nearPlane) - F(r.oHi[a]), nHi = F::load(nearPlane) - F(r.oLo[a]);
-            F fLo = F::load(farPlane) - F(r.oHi[a]), fHi = F::load(farPlane) - F(r.oLo[a]);
-            F rLo(r.rdLo[a]), rHi(r.rdHi[a]);
-            F t0 = min(min(nLo * rLo, nLo * rHi), min(nHi * rLo, nHi * rHi));
-            F t1 = max(max(fLo * rLo, fLo * rHi), max(fHi * rLo, fHi * rHi));
-            entry = max(t0, entry);
-            exit = min(t1, exit);
-        }
-        const F lowerScale(1.0f - 1.0f / 65536.0f), upperScale(kRobustFarScale);
-        entry = select(entry > F(0.0f), entry * lowerScale, entry * upperScale);
-        exit = select(exit > F(0.0f), exit * upperScale, exit * lowerScale);
-        entry.store(tEntryOut + c);
-        mask |= movemask(entry <= exit) << c;
-    }
-    return mask;
-}
-
 /// The leaf's box as one child slot of its parent, tested per ray of a sub-packet.
 struct LeafBox {
     float lower[3], upper[3];
@@ -99,32 +60,12 @@ struct LargePacket {
 
     /// The bounds of the valid rays' origins and reciprocal directions (anyValid must not be 0).
     RayInterval interval() const {
-        using F = vfloat<K>;
-        RayInterval iv;
-        const PacketRay<K>& first = packets[__builtin_ctzll(anyValid)];
-        iv.neg[0] = first.negXs; iv.neg[1] = first.negYs; iv.neg[2] = first.negZs;
-        F oLo[3], oHi[3], rLo[3], rHi[3], tn(__builtin_huge_valf());
-        const F inf(__builtin_huge_valf());
-        for (int a = 0; a < 3; ++a) oLo[a] = rLo[a] = inf, oHi[a] = rHi[a] = -inf;
+        RayBounds<K> bounds;
         for (uint64_t bits = anyValid; bits; bits &= bits - 1) {
-            int s = __builtin_ctzll(bits);
-            const PacketRay<K>& p = packets[s];
-            const F* o[3] = {&p.ox, &p.oy, &p.oz};
-            const F* rd[3] = {&p.slab.rdx, &p.slab.rdy, &p.slab.rdz};
-            for (int a = 0; a < 3; ++a) {
-                oLo[a] = min(select(valid[s], *o[a], inf), oLo[a]);
-                oHi[a] = max(select(valid[s], *o[a], -inf), oHi[a]);
-                rLo[a] = min(select(valid[s], *rd[a], inf), rLo[a]);
-                rHi[a] = max(select(valid[s], *rd[a], -inf), rHi[a]);
-            }
-            tn = min(select(valid[s], p.tnear, inf), tn);
+            const int s = __builtin_ctzll(bits);
+            bounds.add(packets[s], valid[s]);
         }
-        for (int a = 0; a < 3; ++a) {
-            iv.oLo[a] = reduceMin(oLo[a]); iv.oHi[a] = -reduceMin(-oHi[a]);
-            iv.rdLo[a] = reduceMin(rLo[a]); iv.rdHi[a] = -reduceMin(-rHi[a]);
-        }
-        iv.tnear = reduceMin(tn);
-        return iv;
+        return bounds.interval(packets[__builtin_ctzll(anyValid)]);
     }
 
     /// The farthest culling distance among the unfinished rays.
@@ -149,18 +90,6 @@ struct LargePacket {
     }
 };
 
-/// Interval bounds are only tight for nearly parallel rays (a camera tile, shadow rays from
-/// neighbouring pixels): past about 6 degrees of spread, K-wide packets are faster.
-inline bool narrowEnough(const RayInterval& iv) {
-    float spread = 0.0f, extent = 0.0f;
-    for (int a = 0; a < 3; ++a) {
-        float dLo = 1.0f / iv.rdHi[a], dHi = 1.0f / iv.rdLo[a];
-        spread = max(spread, dHi - dLo);
-        extent = max(extent, max(abs(dLo), abs(dHi)));
-    }
-    return spread <= 0.1f * extent;
-}
-
 /// Leaves a large packet may enter before it gives up on interval culling. Where leaves are small
 /// against the packet's beam (the country kitchen from its camera: 690 leaves entered per packet, 0.4%
 /// of the sub-packets' leaf box tests hit), interval culling visits far more than the rays need; such
@@ -184,12 +113,8 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
     if (!oneOctant || scene.root.isLeaf())
         return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
     if (lp.anyValid) {
-        RayInterval iv = lp.interval();
+        const RayInterval iv = lp.interval();
         if (!narrowEnough(iv)) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
-        // Clamp infinite reciprocals (zero direction components) so that 0 * inf cannot appear.
-        for (int a = 0; a < 3; ++a) {
-            iv.rdLo[a] = max(iv.rdLo[a], -3.0e38f); iv.rdHi[a] = min(iv.rdHi[a], 3.0e38f);
-        }
         struct Entry {
             NodeRef ref;
             float distance;  ///< where the packet's interval enters the subtree's box

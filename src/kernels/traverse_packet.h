@@ -5,6 +5,7 @@
 // to single-ray traversal once few rays remain active (Wald et al. 2001, "Interactive Rendering
 // with Coherent Ray Tracing"; Embree's hybrid packet/single-ray scheme, Benthin et al. 2012).
 // Leaves run the reference's arithmetic per lane, so results are bit-identical.
+#include "kernels/ray_interval.h"
 #include "kernels/traverse_single.h"
 
 #include "simd/isa_namespace.h"
@@ -95,6 +96,17 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
     Entry stack[kStackSize<N>];
     int sp = 0;
     if (any(valid)) stack[sp++] = {select(valid, p.tnear, inf), scene.root, 0.0f};
+    // A coherent packet first tests each node's children by its rays' interval, and each ray only
+    // against the children that the interval enters (as Embree's coherent packets do): the per-ray
+    // results are the same, with fewer per-ray tests.
+    RayInterval interval;
+    bool byInterval = false;
+    if (p.uniformOctant && any(valid)) {
+        RayBounds<K> bounds;
+        bounds.add(p, valid);
+        interval = bounds.interval(p);
+        byInterval = narrowEnough(interval);
+    }
     while (sp > 0) {
         Entry e = stack[--sp];
         vbool<K> active = e.entry <= h.t * F(kRobustFarScale);
@@ -134,7 +146,13 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
             Entry nearest;
             bool found = false;
             const int base = sp;
-            for (int i = 0; i < N; ++i) {
+            uint32_t candidates = (1u << N) - 1;
+            if (byInterval) {
+                alignas(64) float intervalEntry[N];
+                candidates = intersectChildrenInterval<N>(node, interval, __builtin_huge_valf(), intervalEntry);
+            }
+            for (; candidates; candidates &= candidates - 1) {
+                const int i = __builtin_ctz(candidates);
                 if (node.child[i].bits == NodeRef::empty().bits) continue;
                 const F entry = packetChildEntry<N, K>(node, i, p, h.t, active);
                 if (none(entry < inf)) continue;
