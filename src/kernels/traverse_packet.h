@@ -147,8 +147,8 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
             bool found = false;
             const int base = sp;
             uint32_t candidates = (1u << N) - 1;
+            alignas(64) float intervalEntry[N];
             if (byInterval) {
-                alignas(64) float intervalEntry[N];
                 candidates = intersectChildrenInterval<N>(node, interval, __builtin_huge_valf(), intervalEntry);
             }
             for (; candidates; candidates &= candidates - 1) {
@@ -156,7 +156,9 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
                 if (node.child[i].bits == NodeRef::empty().bits) continue;
                 const F entry = packetChildEntry<N, K>(node, i, p, h.t, active);
                 if (none(entry < inf)) continue;
-                const Entry e{entry, node.child[i], AnyHit ? 0.0f : reduceMin(entry)};
+                // Ordered by the interval's entry where there is one (a bound on the rays' entries,
+                // without a horizontal minimum per child).
+                const Entry e{entry, node.child[i], AnyHit ? 0.0f : byInterval ? intervalEntry[i] : reduceMin(entry)};
                 if (!found) {
                     nearest = e;
                     found = true;
