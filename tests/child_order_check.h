@@ -1,6 +1,6 @@
 #pragma once
 // pushNearestLast (kernels/child_order.h) on one node, for the tests: compiled in the baseline test
-// sources and, in child_order_avx2.cpp, with AVX2 flags, where it takes the sorting network.
+// sources and, in avx2_checks.cpp, with AVX2 flags, where it takes the sorting network.
 #include <cstdint>
 
 #include "kernels/child_order.h"
@@ -46,7 +46,7 @@ inline ChildOrderResult runPushNearestLast(const float* distances, uint32_t mask
 
 } // namespace WIDERAY_ISA
 
-/// The same compiled for AVX2 (child_order_avx2.cpp): call only where the CPU has it.
+/// The same compiled for AVX2 (avx2_checks.cpp): call only where the CPU has it.
 ChildOrderResult runPushNearestLastAvx2(const float* distances, uint32_t mask);
 
 } // namespace wideray::test

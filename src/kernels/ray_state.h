@@ -4,6 +4,7 @@
 // with their closest hits so far.
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "core/ray.h"
 #include "kernels/box_test.h"
@@ -62,6 +63,34 @@ inline void classifyAxes(PacketRay<K>& p, uint32_t lanes) {
         const vfloat<K>* o[3] = {&p.ox, &p.oy, &p.oz};
         p.okx = *o[p.kx]; p.oky = *o[p.ky]; p.okz = *o[p.kz];
     }
+}
+
+/// One lane (of type T) of a packet vector.
+template <class T, class V>
+[[gnu::always_inline]] inline T laneOf(const V& v, int lane) {
+    T x;
+    std::memcpy(&x, reinterpret_cast<const char*>(&v) + sizeof(T) * size_t(lane), sizeof(T));
+    return x;
+}
+
+/// The single-ray state of a valid lane of a packet: what makeSingleRayState computes for its ray
+/// (the packet's constants come from the same operations, lane by lane), without its six divisions.
+template <int K>
+inline SingleRayState laneState(const PacketRay<K>& p, int lane) {
+    auto f = [lane](const vfloat<K>& v) { return laneOf<float>(v, lane); };
+    auto i = [lane](const vint<K>& v) { return laneOf<int32_t>(v, lane); };
+    SingleRayState s;
+    const SlabRay<vfloat<K>>& r = p.slab;
+    s.box.slab = {f(r.rdx), f(r.rdy), f(r.rdz), f(r.upX), f(r.upY), f(r.upZ), f(r.downX), f(r.downY), f(r.downZ)};
+    const float rd[3] = {s.box.slab.rdx, s.box.slab.rdy, s.box.slab.rdz};
+    for (int a = 0; a < 3; ++a) {
+        const int negative = std::signbit(rd[a]) ? 1 : 0;  // 1 / d has d's sign, zeros included
+        s.box.nearPlane[a] = 2 * a + negative;
+        s.box.farPlane[a] = 2 * a + 1 - negative;
+    }
+    const WatertightRay<vfloat<K>, vint<K>>& w = p.woop;
+    s.woop = {f(w.ox), f(w.oy), f(w.oz), i(w.kx), i(w.ky), i(w.kz), f(w.sx), f(w.sy), f(w.sz)};
+    return s;
 }
 
 /// Hits in SIMD registers; primId is INT32_MAX for "none yet" so that the tie rule is one compare.

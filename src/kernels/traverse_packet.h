@@ -122,7 +122,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
                 Hit hit = laneHit(lanes, user, lane);
                 TraversalCost laneCost;
                 const bool occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(
-                    scene, e.ref, ray, makeSingleRayState(ray), hit, laneCost);
+                    scene, e.ref, ray, laneState(p, lane), hit, laneCost);
                 cost.add(lane, laneCost);
                 if (occluded) {
                     lanes.t[lane] = -__builtin_huge_valf();

@@ -1,0 +1,35 @@
+#pragma once
+// laneState (kernels/ray_state.h) against makeSingleRayState, for the tests: compiled in the baseline
+// test sources (4-wide packets) and, in avx2_checks.cpp, with AVX2 flags (8-wide packets).
+#include <cstring>
+
+#include "kernels/ray_state.h"
+
+namespace wideray::test {
+inline namespace WIDERAY_ISA {
+
+/// How many valid rays of `rays`, loaded as packets of this ISA's width, have a lane state that
+/// differs in any bit from makeSingleRayState of the ray.
+inline int laneStateMismatches(const Ray* rays, int count) {
+    constexpr int K = kMaxWidth;
+    int mismatches = 0;
+    for (int first = 0; first < count; first += K) {
+        const int n = count - first < K ? count - first : K;
+        PacketRay<K> p;
+        PacketHit<K> h;
+        const uint32_t valid = movemask(loadPacket(rays + first, n, p, h));
+        for (int lane = 0; lane < n; ++lane) {
+            if (!(valid >> lane & 1)) continue;
+            const SingleRayState fromPacket = laneState(p, lane), own = makeSingleRayState(rays[first + lane]);
+            mismatches += std::memcmp(&fromPacket, &own, sizeof(SingleRayState)) != 0;
+        }
+    }
+    return mismatches;
+}
+
+} // namespace WIDERAY_ISA
+
+/// The same compiled for AVX2 (avx2_checks.cpp): call only where the CPU has it.
+int laneStateMismatchesAvx2(const Ray* rays, int count);
+
+} // namespace wideray::test
