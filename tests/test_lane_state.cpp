@@ -36,7 +36,9 @@ TEST(LaneState, EqualsSingleRayStateOnEveryIsa) {
         rays.push_back(r);
     }
     EXPECT_EQ(laneStateMismatches(rays.data(), int(rays.size())), 0);
-    if (cpuSupports(Isa::Avx2)) EXPECT_EQ(laneStateMismatchesAvx2(rays.data(), int(rays.size())), 0);
+    if (cpuSupports(Isa::Avx2)) {
+        EXPECT_EQ(laneStateMismatchesAvx2(rays.data(), int(rays.size())), 0);
+    }
 }
 
 } // namespace
