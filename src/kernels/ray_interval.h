@@ -12,12 +12,17 @@ inline namespace WIDERAY_ISA {
 /// Bounds of the packet's rays, per axis: origins and reciprocal directions (all of one sign).
 struct RayInterval {
     float oLo[3], oHi[3], rdLo[3], rdHi[3];
+    /// Per axis, a distance at least the rays' own slab tests widen by: they subtract o * rd rounded
+    /// outward by an ulp or two (SlabRay), an absolute |o * rd| * 2^-22 that a margin relative to
+    /// the distance would miss near origins far from zero.
+    float margin[3];
     bool neg[3];
     float tnear;
 };
 
-/// Interval test of all N children of a node. The bounds are widened by 2^-16 relative, far more
-/// than the rounding of the interval products, so that no child that one of the rays enters is lost.
+/// Interval test of all N children of a node. The bounds are widened by the interval's margin and
+/// then by 2^-16 relative, far more than the rounding of the interval products, so that no child that
+/// one of the rays' own slab tests enters is lost.
 template <int N>
 [[gnu::always_inline]] inline uint32_t intersectChildrenInterval(const WideNode<N>& node, const RayInterval& r,
                                                                  float tfarMax, float* tEntryOut) {
@@ -34,8 +39,9 @@ template <int N>
             F nLo = F::load(nearPlane) - F(r.oHi[a]), nHi = F::load(nearPlane) - F(r.oLo[a]);
             F fLo = F::load(farPlane) - F(r.oHi[a]), fHi = F::load(farPlane) - F(r.oLo[a]);
             F rLo(r.rdLo[a]), rHi(r.rdHi[a]);
-            F t0 = min(min(nLo * rLo, nLo * rHi), min(nHi * rLo, nHi * rHi));
-            F t1 = max(max(fLo * rLo, fLo * rHi), max(fHi * rLo, fHi * rHi));
+            const F margin(r.margin[a]);
+            F t0 = min(min(nLo * rLo, nLo * rHi), min(nHi * rLo, nHi * rHi)) - margin;
+            F t1 = max(max(fLo * rLo, fLo * rHi), max(fHi * rLo, fHi * rHi)) + margin;
             entry = max(t0, entry);
             exit = min(t1, exit);
         }
@@ -73,14 +79,16 @@ struct RayBounds {
         tn = min(select(lanes, p.tnear, inf), tn);
     }
 
-    /// The interval of the lanes added, whose octant is `octant`'s (a packet of uniform octant).
-    RayInterval interval(const PacketRay<K>& octant) const {
+    /// The interval of the lanes added, which share the direction octant of `sameOctant` (a packet of
+    /// uniform octant).
+    RayInterval interval(const PacketRay<K>& sameOctant) const {
         RayInterval iv;
-        iv.neg[0] = octant.negXs; iv.neg[1] = octant.negYs; iv.neg[2] = octant.negZs;
+        iv.neg[0] = sameOctant.negXs; iv.neg[1] = sameOctant.negYs; iv.neg[2] = sameOctant.negZs;
         for (int a = 0; a < 3; ++a) {
             iv.oLo[a] = reduceMin(oLo[a]); iv.oHi[a] = -reduceMin(-oHi[a]);
             // Infinite reciprocals (zero direction components) clamped, so that 0 * inf cannot appear.
             iv.rdLo[a] = max(reduceMin(rLo[a]), -3.0e38f); iv.rdHi[a] = min(-reduceMin(-rHi[a]), 3.0e38f);
+            iv.margin[a] = 0x1p-21f * max(abs(iv.oLo[a]), abs(iv.oHi[a])) * max(abs(iv.rdLo[a]), abs(iv.rdHi[a]));
         }
         iv.tnear = reduceMin(tn);
         return iv;

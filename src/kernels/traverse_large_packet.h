@@ -48,7 +48,7 @@ struct LargePacket {
         for (int s = 0; s < subCount; ++s) {
             valid[s] = loadPacket(rays + s * K, count - s * K < K ? count - s * K : K, packets[s], hits[s]);
             users[s] = PacketUserHits<K>(rays + s * K);
-                done[s] = andNot(vbool<K>(true), valid[s]);
+            done[s] = andNot(vbool<K>(true), valid[s]);
             if (none(valid[s])) continue;
             const PacketRay<K>& first = packets[__builtin_ctzll(anyValid | (uint64_t(1) << s))];
             oneOctant = oneOctant && packets[s].uniformOctant && packets[s].negXs == first.negXs &&

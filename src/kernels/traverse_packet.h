@@ -91,7 +91,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
     struct alignas(64) Entry {
         F entry;         ///< per ray: where it enters the subtree's box (+inf: it does not)
         NodeRef ref;
-        float distance;  ///< the nearest ray's entry, which the stack is sorted by
+        float distance;  ///< the nearest ray's entry (or the interval's, below it), which the stack is sorted by
     };
     Entry stack[kStackSize<N>];
     int sp = 0;
@@ -99,7 +99,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
     // A coherent packet first tests each node's children by its rays' interval, and each ray only
     // against the children that the interval enters (as Embree's coherent packets do): the per-ray
     // results are the same, with fewer per-ray tests.
-    RayInterval interval;
+    RayInterval interval{};
     bool byInterval = false;
     if (p.uniformOctant && any(valid)) {
         RayBounds<K> bounds;
@@ -140,8 +140,9 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
         while (!ref.isLeaf()) {
             const WideNode<N>& node = scene.nodes[ref.index()];
             cost.visit(movemask(active));
-            // Continue with the child that the nearest ray enters first; push the others sorted by their
-            // nearest ray's entry, farthest first (any-hit: any occluder will do, so no order is kept).
+            // Continue with the child entered first (by the nearest ray, or by the interval); push the
+            // others sorted by that entry, farthest first (any-hit: any occluder will do, so no order
+            // is kept).
             // The nearest so far waits in registers rather than on the stack.
             Entry nearest;
             bool found = false;
@@ -158,7 +159,9 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
                 if (none(entry < inf)) continue;
                 // Ordered by the interval's entry where there is one (a bound on the rays' entries,
                 // without a horizontal minimum per child).
-                const Entry e{entry, node.child[i], AnyHit ? 0.0f : byInterval ? intervalEntry[i] : reduceMin(entry)};
+                float distance = 0.0f;
+                if constexpr (!AnyHit) distance = byInterval ? intervalEntry[i] : reduceMin(entry);
+                const Entry e{entry, node.child[i], distance};
                 if (!found) {
                     nearest = e;
                     found = true;
