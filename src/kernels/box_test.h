@@ -47,16 +47,22 @@ struct BoxRay {
     int nearPlane[3], farPlane[3];
 };
 
-inline BoxRay makeBoxRay(float ox, float oy, float oz, float dx, float dy, float dz) {
+/// The box test of a ray with these slab constants: near planes from the reciprocal direction's
+/// signs (1 / d has d's sign, zeros included).
+inline BoxRay makeBoxRay(const SlabRay<float>& slab) {
     BoxRay r;
-    r.slab = makeSlabRay(ox, oy, oz, 1.0f / dx, 1.0f / dy, 1.0f / dz);
-    const float d[3] = {dx, dy, dz};
+    r.slab = slab;
+    const float rd[3] = {slab.rdx, slab.rdy, slab.rdz};
     for (int a = 0; a < 3; ++a) {
-        const int negative = std::signbit(d[a]) ? 1 : 0;
+        const int negative = std::signbit(rd[a]) ? 1 : 0;
         r.nearPlane[a] = 2 * a + negative;
         r.farPlane[a] = 2 * a + 1 - negative;
     }
     return r;
+}
+
+inline BoxRay makeBoxRay(float ox, float oy, float oz, float dx, float dy, float dz) {
+    return makeBoxRay(makeSlabRay(ox, oy, oz, 1.0f / dx, 1.0f / dy, 1.0f / dz));
 }
 
 /// The slab test, the one every kernel runs: entry and exit distances of rays through boxes given by

@@ -81,13 +81,8 @@ inline SingleRayState laneState(const PacketRay<K>& p, int lane) {
     auto i = [lane](const vint<K>& v) { return laneOf<int32_t>(v, lane); };
     SingleRayState s;
     const SlabRay<vfloat<K>>& r = p.slab;
-    s.box.slab = {f(r.rdx), f(r.rdy), f(r.rdz), f(r.upX), f(r.upY), f(r.upZ), f(r.downX), f(r.downY), f(r.downZ)};
-    const float rd[3] = {s.box.slab.rdx, s.box.slab.rdy, s.box.slab.rdz};
-    for (int a = 0; a < 3; ++a) {
-        const int negative = std::signbit(rd[a]) ? 1 : 0;  // 1 / d has d's sign, zeros included
-        s.box.nearPlane[a] = 2 * a + negative;
-        s.box.farPlane[a] = 2 * a + 1 - negative;
-    }
+    s.box = makeBoxRay(
+        SlabRay<float>{f(r.rdx), f(r.rdy), f(r.rdz), f(r.upX), f(r.upY), f(r.upZ), f(r.downX), f(r.downY), f(r.downZ)});
     const WatertightRay<vfloat<K>, vint<K>>& w = p.woop;
     s.woop = {f(w.ox), f(w.oy), f(w.oz), i(w.kx), i(w.ky), i(w.kz), f(w.sx), f(w.sy), f(w.sz)};
     return s;
