@@ -23,6 +23,12 @@ namespace {
 constexpr int kMedianDepth = kMaxBvhDepth - 24;  // leaves room for log2(2^24) median levels
 constexpr uint32_t kParallelThreshold = 4096;    // references: above, a node bins in parallel and its subtrees run as tasks
 constexpr uint32_t kParallelGrain = 4096;
+// Spatial binning of nodes of at least kSpatialSampleMinRefs references is tried on a sample first
+// (spatialSplitMayWin). Measured against binning all (wideray info --quality high, one thread): the
+// same SAH cost on the coffee maker, the kitchen and Sponza (the dragon's +0.1%), the kitchen's build
+// 674 -> 617 ms, the coffee maker's 124 -> 110 ms; 4096 or 1024 references, within noise of 2048.
+constexpr uint32_t kSpatialSampleMinRefs = 2048;
+constexpr uint32_t kSpatialSampleStride = 8;
 
 /// A node's references: [begin, end) in use, [end, capacityEnd) free for the duplicates that spatial
 /// splits below it create. Bounds of the references and of their center2.
@@ -161,9 +167,11 @@ private:
             if (object.axis < 0 || (overlapArea > config_.spatialOverlap * rootHalfArea_ &&
                                     overlapArea > config_.spatialNodeOverlap * range.bounds.halfArea())) {
                 spatialMapping.emplace(range.bounds, config_.spatialBinCount);
-                SpatialBins spatialBins(spatialMapping->count);
-                binSpatially(range, *spatialMapping, spatialBins);
-                spatial = spatialBins.bestSplit(*spatialMapping, blockShift());
+                if (spatialSplitMayWin(range, *spatialMapping, object.cost)) {
+                    SpatialBins spatialBins(spatialMapping->count);
+                    binSpatially(range, *spatialMapping, spatialBins, 1);
+                    spatial = spatialBins.bestSplit(*spatialMapping, blockShift());
+                }
                 if (spatial.axis >= 0 && spatial.leftCount + spatial.rightCount - count > range.spare()) spatial = {};
             }
         }
@@ -188,12 +196,26 @@ private:
             [&](ObjectBins& bins, uint32_t from, uint32_t to) { bins.add(refs_.data() + from, to - from, mapping); });
     }
 
-    void binSpatially(const BuildRange& range, const SpatialBinMapping& mapping, SpatialBins& bins) const {
+    /// Bins every stride-th reference of the range.
+    void binSpatially(const BuildRange& range, const SpatialBinMapping& mapping, SpatialBins& bins, uint32_t stride) const {
         reduceRange(
-            range.begin, range.end, bins, [&] { return SpatialBins(mapping.count); },
+            0, (range.size() + stride - 1) / stride, bins, [&] { return SpatialBins(mapping.count); },
             [&](SpatialBins& bins, uint32_t from, uint32_t to) {
-                bins.add(refs_.data() + from, to - from, mapping, *splitter_);
+                bins.add(refs_.data() + range.begin + size_t(from) * stride, to - from, stride, mapping, *splitter_);
             });
+    }
+
+    /// Whether binning all references spatially may find a split that beats the object split. Large
+    /// nodes bin a sample first (every kSpatialSampleStride-th reference, counted that many times),
+    /// whose best split must beat it: most spatial binnings of large nodes find no better split (of
+    /// the coffee maker's, 9 in 10). A sample's bins hold fewer references, so their boxes and its
+    /// costs err low, toward binning all.
+    bool spatialSplitMayWin(const BuildRange& range, const SpatialBinMapping& mapping, float objectCost) const {
+        if (range.size() < kSpatialSampleMinRefs) return true;
+        SpatialBins sample(mapping.count);
+        binSpatially(range, mapping, sample, kSpatialSampleStride);
+        sample.scaleCounts(kSpatialSampleStride);
+        return sample.bestSplit(mapping, blockShift()).cost < objectCost;
     }
 
     /// In place, by the bins the binning left in the references. The children's boxes are the

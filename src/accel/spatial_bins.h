@@ -62,8 +62,10 @@ struct SpatialBins {
 
     BuildBox box(int axis, int bin) const { return boxes.box(axis, bin); }
 
-    void add(const BuildRef* refs, size_t refCount, const SpatialBinMapping& mapping, const TriangleSplitter& splitter) {
-        addInterleaved(*this, refCount, [&](SpatialBins& bins, size_t i) { bins.add(refs[i], mapping, splitter); });
+    /// Bins refs[0], refs[stride], refs[2 * stride], ... (refCount of them).
+    void add(const BuildRef* refs, size_t refCount, size_t stride, const SpatialBinMapping& mapping,
+             const TriangleSplitter& splitter) {
+        addInterleaved(*this, refCount, [&](SpatialBins& bins, size_t i) { bins.add(refs[i * stride], mapping, splitter); });
     }
 
     /// Counts the reference where it starts and ends along each axis, and grows each bin it overlaps
@@ -102,6 +104,15 @@ struct SpatialBins {
             for (int a = 0; a < 3; ++a) {
                 enter[b][a] += other.enter[b][a];
                 exit[b][a] += other.exit[b][a];
+            }
+    }
+
+    /// Counts each reference `factor` times: a sample's bins, scaled to the node's size.
+    void scaleCounts(uint32_t factor) {
+        for (int b = 0; b < count; ++b)
+            for (int a = 0; a < 3; ++a) {
+                enter[b][a] *= factor;
+                exit[b][a] *= factor;
             }
     }
 
