@@ -2,6 +2,7 @@
 // Binary BVH built with the binned surface area heuristic (Wald 2007, "On fast construction of
 // SAH-based bounding volume hierarchies"), with spatial splits at high quality (Stich et al. 2009). It
 // is the input of the wide collapse, not a tracing layout.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -20,8 +21,34 @@ struct BinaryNode {
     bool isLeaf() const { return count > 0; }
 };
 
+/// A binary BVH's nodes, in memory sized for the most nodes a build may create, of which it touches
+/// only those it creates: a vector would construct them all up front, or cost a copy (and the page
+/// faults of its fresh memory) once their number is known.
+class BinaryNodes {
+public:
+    /// Room for `capacity` nodes, none of them in use (the builder places its nodes there).
+    void allocate(size_t capacity) {
+        storage_.resize(capacity * sizeof(BinaryNode));
+        size_ = 0;
+    }
+    /// The first `count` nodes are in use (count <= the capacity allocated).
+    void setSize(size_t count) { size_ = count; }
+
+    BinaryNode* data() { return reinterpret_cast<BinaryNode*>(storage_.data()); }
+    const BinaryNode* data() const { return reinterpret_cast<const BinaryNode*>(storage_.data()); }
+    size_t size() const { return size_; }
+    BinaryNode& operator[](size_t i) { return data()[i]; }
+    const BinaryNode& operator[](size_t i) const { return data()[i]; }
+    const BinaryNode* begin() const { return data(); }
+    const BinaryNode* end() const { return data() + size_; }
+
+private:
+    UninitializedVector<std::byte> storage_;
+    size_t size_ = 0;
+};
+
 struct BinaryBvh {
-    UninitializedVector<BinaryNode> nodes;  ///< nodes[0] is the root
+    BinaryNodes nodes;  ///< nodes[0] is the root
     UninitializedVector<uint32_t> primIndices;  ///< leaves' primitives; a subtree's are contiguous
 };
 

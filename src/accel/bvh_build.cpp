@@ -86,14 +86,14 @@ public:
         const uint32_t capacity = splitter_ ? uint32_t(buildRefCapacity(primCount, config_)) : primCount;
         refs_.resize(capacity);
         // Room for the most nodes a tree over `capacity` references can have, of which the build
-        // touches only those it creates (zeroing all would be a single-threaded pass).
-        nodeStorage_.resize((2 * size_t(capacity) - 1) * sizeof(BinaryNode));
-        nodes_ = reinterpret_cast<BinaryNode*>(nodeStorage_.data());
+        // touches only those it creates.
+        out_.nodes.allocate(2 * size_t(capacity) - 1);
+        nodes_ = out_.nodes.data();
         nodeCount_ = 1;
         BuildRange root = measured(0, primCount, capacity);
         rootHalfArea_ = root.bounds.halfArea();
         buildNode(0, root, 0);
-        out_.nodes.assign(nodes_, nodes_ + nodeCount_);
+        out_.nodes.setSize(nodeCount_);
         if (capacity == primCount) {
             // Without spare capacity the leaves tile the references in depth-first order already.
             out_.primIndices.resize(primCount);
@@ -435,7 +435,6 @@ private:
     const BvhBuildConfig& config_;
     const TriangleSplitter* splitter_;
     BinaryBvh& out_;
-    UninitializedVector<std::byte> nodeStorage_;
     BinaryNode* nodes_ = nullptr;
     float rootHalfArea_ = 0;
     /// Taken by every inner node on every thread: on a cache line of its own, so that its writes do
