@@ -37,6 +37,7 @@ public:
     BinaryNode* data() { return reinterpret_cast<BinaryNode*>(storage_.data()); }
     const BinaryNode* data() const { return reinterpret_cast<const BinaryNode*>(storage_.data()); }
     size_t size() const { return size_; }
+    size_t capacity() const { return storage_.size() / sizeof(BinaryNode); }
     BinaryNode& operator[](size_t i) { return data()[i]; }
     const BinaryNode& operator[](size_t i) const { return data()[i]; }
     const BinaryNode* begin() const { return data(); }

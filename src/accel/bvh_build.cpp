@@ -89,10 +89,11 @@ public:
         // touches only those it creates.
         out_.nodes.allocate(2 * size_t(capacity) - 1);
         nodes_ = out_.nodes.data();
+        if (capacity != primCount) refsBelow_.resize(out_.nodes.capacity());
         nodeCount_ = 1;
         BuildRange root = measured(0, primCount, capacity);
         rootHalfArea_ = root.bounds.halfArea();
-        buildNode(0, root, 0);
+        const uint32_t leafRefs = buildNode(0, root, 0);
         out_.nodes.setSize(nodeCount_);
         if (capacity == primCount) {
             // Without spare capacity the leaves tile the references in depth-first order already.
@@ -101,7 +102,8 @@ public:
                 for (uint32_t i = r.begin(); i != r.end(); ++i) out_.primIndices[i] = refs_[i].prim;
             });
         } else {
-            gatherLeaves();
+            out_.primIndices.resize(leafRefs);
+            gatherLeaves(0, 0);
         }
     }
 
@@ -117,26 +119,33 @@ private:
         return {begin, end, capacityEnd, b.bounds, b.centroids};
     }
 
-    void buildNode(uint32_t nodeIndex, const BuildRange& range, int depth) {
+    /// Builds the subtree at nodes_[nodeIndex]; returns the number of references in its leaves (kept
+    /// in refsBelow_ where spare capacity will leave gaps for gatherLeaves to close).
+    uint32_t buildNode(uint32_t nodeIndex, const BuildRange& range, int depth) {
         BinaryNode& node = *new (&nodes_[nodeIndex]) BinaryNode;
         node.bounds = range.bounds.bounds();
         BuildRange left, right;
+        uint32_t refs = range.size();
         if (!split(range, depth, left, right)) {
             node.first = range.begin;
             node.count = range.size();
-            return;
+        } else {
+            shareSpare(range, left, right);
+            const uint32_t child = nodeCount_.fetch_add(2);
+            node.first = child;
+            node.count = 0;
+            uint32_t leftRefs, rightRefs;
+            if (range.size() >= kParallelThreshold)
+                tbb::parallel_invoke([&] { leftRefs = buildNode(child, left, depth + 1); },
+                                     [&] { rightRefs = buildNode(child + 1, right, depth + 1); });
+            else {
+                leftRefs = buildNode(child, left, depth + 1);
+                rightRefs = buildNode(child + 1, right, depth + 1);
+            }
+            refs = leftRefs + rightRefs;
         }
-        shareSpare(range, left, right);
-        const uint32_t child = nodeCount_.fetch_add(2);
-        node.first = child;
-        node.count = 0;
-        if (range.size() >= kParallelThreshold)
-            tbb::parallel_invoke([&] { buildNode(child, left, depth + 1); },
-                                 [&] { buildNode(child + 1, right, depth + 1); });
-        else {
-            buildNode(child, left, depth + 1);
-            buildNode(child + 1, right, depth + 1);
-        }
+        if (!refsBelow_.empty()) refsBelow_[nodeIndex] = refs;
+        return refs;
     }
 
     /// Splits `range` into two children, or returns false where it becomes a leaf.
@@ -397,13 +406,21 @@ private:
     }
 
     /// Gives each child a share of the parent's spare capacity in proportion to its references: the
-    /// right child's references move up to make room after the left child's.
+    /// right child's range moves up to make room after the left child's, by moving its first
+    /// references into the free slots after its end (as Embree does: fewer moves than shifting all).
     void shareSpare(const BuildRange& parent, BuildRange& left, BuildRange& right) {
         const uint32_t spare = parent.capacityEnd - right.end;
         const uint32_t leftSpare = uint32_t(uint64_t(spare) * left.size() / (left.size() + right.size()));
         if (leftSpare > 0) {
             BuildRef* refs = refs_.data();
-            std::move_backward(refs + right.begin, refs + right.end, refs + right.end + leftSpare);
+            const uint32_t moved = std::min(leftSpare, right.size());
+            BuildRef* to = refs + right.end + leftSpare - moved;
+            if (moved >= kParallelThreshold)
+                tbb::parallel_for(tbb::blocked_range<uint32_t>(0, moved, kParallelGrain), [&](const tbb::blocked_range<uint32_t>& r) {
+                    std::copy(refs + right.begin + r.begin(), refs + right.begin + r.end(), to + r.begin());
+                });
+            else
+                std::copy(refs + right.begin, refs + right.begin + moved, to);
             right.begin += leftSpare;
             right.end += leftSpare;
         }
@@ -411,24 +428,22 @@ private:
         right.capacityEnd = parent.capacityEnd;
     }
 
-    /// primIndices from the leaves in depth-first order, so that every subtree's primitives are
-    /// contiguous (spatial splits leave unused capacity between the ranges).
-    void gatherLeaves() {
-        out_.primIndices.clear();
-        out_.primIndices.reserve(refs_.size());
-        gather(0);
-    }
-
-    void gather(uint32_t nodeIndex) {
-        BinaryNode& node = out_.nodes[nodeIndex];
-        if (!node.isLeaf()) {
-            gather(node.first);
-            gather(node.first + 1);
+    /// primIndices from the subtree's leaves in depth-first order from `offset` on, so that every
+    /// subtree's primitives are contiguous (spatial splits leave unused capacity between the ranges).
+    void gatherLeaves(uint32_t nodeIndex, uint32_t offset) {
+        BinaryNode& node = nodes_[nodeIndex];
+        if (node.isLeaf()) {
+            for (uint32_t i = 0; i != node.count; ++i) out_.primIndices[offset + i] = refs_[node.first + i].prim;
+            node.first = offset;
             return;
         }
-        const uint32_t first = uint32_t(out_.primIndices.size());
-        for (uint32_t i = node.first; i != node.first + node.count; ++i) out_.primIndices.push_back(refs_[i].prim);
-        node.first = first;
+        const uint32_t left = node.first, rightOffset = offset + refsBelow_[left];
+        if (refsBelow_[nodeIndex] >= kParallelThreshold)
+            tbb::parallel_invoke([&] { gatherLeaves(left, offset); }, [&] { gatherLeaves(left + 1, rightOffset); });
+        else {
+            gatherLeaves(left, offset);
+            gatherLeaves(left + 1, rightOffset);
+        }
     }
 
     BuildRefs& refs_;
@@ -436,6 +451,7 @@ private:
     const TriangleSplitter* splitter_;
     BinaryBvh& out_;
     BinaryNode* nodes_ = nullptr;
+    UninitializedVector<uint32_t> refsBelow_;  ///< per node: the references in its subtree's leaves
     float rootHalfArea_ = 0;
     /// Taken by every inner node on every thread: on a cache line of its own, so that its writes do
     /// not evict the members above from the other threads' caches.
