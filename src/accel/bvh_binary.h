@@ -26,6 +26,12 @@ struct BinaryNode {
 /// faults of its fresh memory) once their number is known.
 class BinaryNodes {
 public:
+    BinaryNodes() = default;
+    BinaryNodes(BinaryNodes&&) = default;
+    BinaryNodes& operator=(BinaryNodes&&) = default;
+    BinaryNodes(const BinaryNodes&) = delete;  // would copy the whole capacity, untouched pages too
+    BinaryNodes& operator=(const BinaryNodes&) = delete;
+
     /// Room for `capacity` nodes, none of them in use (the builder places its nodes there).
     void allocate(size_t capacity) {
         storage_.resize(capacity * sizeof(BinaryNode));
