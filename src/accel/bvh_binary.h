@@ -4,6 +4,8 @@
 // is the input of the wide collapse, not a tracing layout.
 #include <cstddef>
 #include <cstdint>
+#include <new>
+#include <utility>
 #include <vector>
 
 #include "accel/build_ref.h"
@@ -27,8 +29,13 @@ struct BinaryNode {
 class BinaryNodes {
 public:
     BinaryNodes() = default;
-    BinaryNodes(BinaryNodes&&) = default;
-    BinaryNodes& operator=(BinaryNodes&&) = default;
+    BinaryNodes(BinaryNodes&& other) noexcept
+        : storage_(std::move(other.storage_)), size_(std::exchange(other.size_, 0)) {}
+    BinaryNodes& operator=(BinaryNodes&& other) noexcept {
+        storage_ = std::move(other.storage_);
+        size_ = std::exchange(other.size_, 0);
+        return *this;
+    }
     BinaryNodes(const BinaryNodes&) = delete;  // would copy the whole capacity, untouched pages too
     BinaryNodes& operator=(const BinaryNodes&) = delete;
 
@@ -40,8 +47,8 @@ public:
     /// The first `count` nodes are in use (count <= the capacity allocated).
     void setSize(size_t count) { size_ = count; }
 
-    BinaryNode* data() { return reinterpret_cast<BinaryNode*>(storage_.data()); }
-    const BinaryNode* data() const { return reinterpret_cast<const BinaryNode*>(storage_.data()); }
+    BinaryNode* data() { return std::launder(reinterpret_cast<BinaryNode*>(storage_.data())); }
+    const BinaryNode* data() const { return std::launder(reinterpret_cast<const BinaryNode*>(storage_.data())); }
     size_t size() const { return size_; }
     size_t capacity() const { return storage_.size() / sizeof(BinaryNode); }
     BinaryNode& operator[](size_t i) { return data()[i]; }
