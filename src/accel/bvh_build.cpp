@@ -21,7 +21,7 @@ namespace wideray {
 namespace {
 
 constexpr int kMedianDepth = kMaxBvhDepth - 24;  // leaves room for log2(2^24) median levels
-constexpr uint32_t kParallelThreshold = 4096;    // references: above, a node bins in parallel and its subtrees run as tasks
+constexpr uint32_t kParallelThreshold = 4096;    // references (or samples): above, binning runs in parallel and subtrees as tasks
 constexpr uint32_t kParallelGrain = 4096;
 // Spatial binning of nodes of at least kSpatialSampleMinRefs references is tried on a sample first
 // (spatialSplitMayWin). Measured against binning all (wideray info --quality high, one thread): the
@@ -176,7 +176,7 @@ private:
             if (object.axis < 0 || (overlapArea > config_.spatialOverlap * rootHalfArea_ &&
                                     overlapArea > config_.spatialNodeOverlap * range.bounds.halfArea())) {
                 spatialMapping.emplace(range.bounds, config_.spatialBinCount);
-                if (object.axis < 0 || spatialSplitMayWin(range, *spatialMapping, object.cost)) {
+                if (spatialSplitMayWin(range, *spatialMapping, object.cost)) {
                     SpatialBins spatialBins(spatialMapping->count);
                     binSpatially(range, *spatialMapping, spatialBins, 1);
                     spatial = spatialBins.bestSplit(*spatialMapping, blockShift());
@@ -220,8 +220,9 @@ private:
     /// the coffee maker's, 9 in 10). The sample's boxes err small, which favours binning all, but its
     /// counts are estimates either way, so a split that would have won can be missed (measured: the
     /// same SAH cost to two decimals on the coffee maker, the kitchen and Sponza, the dragon's +0.1%).
+    /// Without an object split (infinite cost) all are binned.
     bool spatialSplitMayWin(const BuildRange& range, const SpatialBinMapping& mapping, float objectCost) const {
-        if (range.size() < kSpatialSampleMinRefs) return true;
+        if (range.size() < kSpatialSampleMinRefs || objectCost == std::numeric_limits<float>::infinity()) return true;
         SpatialBins sample(mapping.count);
         binSpatially(range, mapping, sample, kSpatialSampleStride);
         sample.scaleCounts(kSpatialSampleStride);
