@@ -18,6 +18,7 @@
 #include "io/mesh_generators.h"
 #include "io/mesh_io.h"
 #include "accel/scene_accel.h"
+#include "accel/triangle_splitter.h"
 #include "test_data.h"
 
 namespace wideray {
@@ -69,10 +70,8 @@ bool inside(const Bounds3f& box, const glm::vec3& p) {
 }
 
 template <int N>
-void checkWide(const TriangleMesh& mesh, CollapseMethod collapse = CollapseMethod::Sah,
-               BuildQuality quality = BuildQuality::Fast) {
-    BvhBuildConfig config = quality == BuildQuality::High ? highConfig<N>() : SceneAccel<N>::defaultConfig();
-    config.collapse = collapse;
+void checkWide(const TriangleMesh& mesh, const BvhBuildConfig& config) {
+    const BuildQuality quality = config.quality;
     SceneAccel<N> accel(std::make_shared<SceneGeometry>(mesh), config);
     const WideBvh<N>& bvh = accel.bvh();
     const auto& blocks = accel.blocks();
@@ -82,12 +81,14 @@ void checkWide(const TriangleMesh& mesh, CollapseMethod collapse = CollapseMetho
 
     std::function<void(NodeRef, const Bounds3f&)> visit = [&](NodeRef ref, const Bounds3f& box) {
         if (ref.isLeaf()) {
+            std::vector<uint32_t> leafPrims;
             for (uint32_t b = ref.first(); b < ref.first() + ref.count(); ++b) {
                 ++blockSeen[b];
                 const TriangleBlock<kBlockSize>& block = blocks[b];
                 ASSERT_GT(block.count(), 0);
                 for (int lane = 0; lane < block.count(); ++lane) {
                     uint32_t prim = block.primId[lane];
+                    leafPrims.push_back(prim);
                     ++seen[prim];
                     leafBoxes[prim].push_back(box);
                     if (quality == BuildQuality::Fast) {
@@ -98,6 +99,9 @@ void checkWide(const TriangleMesh& mesh, CollapseMethod collapse = CollapseMetho
                     EXPECT_EQ(block.v2z[lane], mesh.positions[t.z].z);
                 }
             }
+            // A triangle whose parts reach sibling leaves that the collapse merges is stored once.
+            std::sort(leafPrims.begin(), leafPrims.end());
+            EXPECT_EQ(std::adjacent_find(leafPrims.begin(), leafPrims.end()), leafPrims.end()) << "a leaf names a triangle twice";
             return;
         }
         const WideNode<N>& node = bvh.nodes[ref.index()];
@@ -143,6 +147,14 @@ void checkWide(const TriangleMesh& mesh, CollapseMethod collapse = CollapseMetho
     std::printf("  BVH%d high quality: %.3f references per triangle\n", N, double(references) / double(seen.size()));
 }
 
+template <int N>
+void checkWide(const TriangleMesh& mesh, CollapseMethod collapse = CollapseMethod::Sah,
+               BuildQuality quality = BuildQuality::Fast) {
+    BvhBuildConfig config = quality == BuildQuality::High ? highConfig<N>() : SceneAccel<N>::defaultConfig();
+    config.collapse = collapse;
+    checkWide<N>(mesh, config);
+}
+
 TEST(Bvh, WideCollapseKeepsEveryTriangleOnceInsideItsBoxes) {
     TriangleMesh mesh = testMesh();
     for (CollapseMethod collapse : {CollapseMethod::Sah, CollapseMethod::Greedy}) {
@@ -159,6 +171,39 @@ TEST(Bvh, SpatialSplitsCoverEveryTriangleWithinTheBudget) {
     if (!dir) GTEST_SKIP() << "the shared meshes need ../shared/scenes (or WIDERAY_SCENES)";
     // Long thin triangles across big rooms: where spatial splits clip the most.
     checkWide<8>(loadMesh(*dir / "crytek-sponza/sponza.obj"), CollapseMethod::Sah, BuildQuality::High);
+}
+
+/// Small triangles in a row under one long sliver across them all: spatial splits clip the sliver into
+/// the small ones' nodes, and the collapse merges those nodes again into leaves.
+TriangleMesh slicedSliver(int count) {
+    TriangleMesh mesh;
+    auto add = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+        const uint32_t first = uint32_t(mesh.positions.size());
+        mesh.positions.insert(mesh.positions.end(), {a, b, c});
+        mesh.triangles.push_back({first, first + 1, first + 2});
+    };
+    for (int i = 0; i < count; ++i) {
+        const float x = float(i);
+        add({x, 0.0f, 0.0f}, {x + 0.5f, 0.0f, 0.0f}, {x, 0.5f, 0.5f});
+    }
+    add({0.0f, 0.2f, 0.2f}, {float(count), 0.2f, 0.2f}, {0.0f, 0.25f, 0.25f});
+    return mesh;
+}
+
+TEST(Bvh, LeavesMergedAcrossASpatialSplitNameEachTriangleOnce) {
+    // Traversal made dear: the collapse merges the spatial split's two sides into one leaf.
+    BvhBuildConfig config = highConfig<8>();
+    config.traversalCost = 16.0f;
+    config.compareBuildsBelow = 0;  // keep the spatial tree
+    for (int count : {9, 10, 12}) {
+        const TriangleMesh mesh = slicedSliver(count);
+        const TriangleSplitter splitter(mesh);
+        const BinaryBvh binary = buildBinaryBvh(
+            triangleRefs(mesh, buildRefCapacity(mesh.triangles.size(), config)), config, &splitter);
+        ASSERT_GT(binary.primIndices.size(), mesh.triangles.size()) << count << ": the sliver must be split";
+        checkWide<8>(mesh, config);
+        checkWide<4>(mesh, config);
+    }
 }
 
 /// The high quality build keeps its spatial splits only where the wide tree costs less for them.

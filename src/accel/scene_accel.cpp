@@ -63,7 +63,9 @@ WideBvh<N> joinBvhs(WideBvh<N> a, WideBvh<N> b) {
 }
 
 /// A leaf's primitives, each once: spatial splits put parts of one triangle in sibling leaves, which
-/// the collapse may merge.
+/// the collapse may merge. A node's references name distinct primitives (a spatial split sends one copy
+/// to each side), so a leaf repeats one only if a spatial split happened inside the subtree it merges,
+/// which had at least config.spatialMinRefs references: smaller leaves (all, by default) skip the sort.
 class DistinctPrims {
 public:
     DistinctPrims(std::span<const uint32_t> prims, bool mayRepeat) : prims_(prims) {
@@ -86,15 +88,16 @@ private:
 /// triangle, with an invalid primId).
 class TriangleBlockWriter final : public LeafWriter {
 public:
-    TriangleBlockWriter(const TriangleMesh& mesh, bool mayRepeat, TriangleBlocks& blocks)
-        : mesh_(mesh), mayRepeat_(mayRepeat), blocks_(blocks) {}
+    /// Leaves of `repeatsFrom` primitives or more may name one twice.
+    TriangleBlockWriter(const TriangleMesh& mesh, size_t repeatsFrom, TriangleBlocks& blocks)
+        : mesh_(mesh), repeatsFrom_(repeatsFrom), blocks_(blocks) {}
 
     uint32_t itemCount(std::span<const uint32_t> prims) const override {
-        return blocksFor(DistinctPrims(prims, mayRepeat_).get().size());
+        return blocksFor(DistinctPrims(prims, prims.size() >= repeatsFrom_).get().size());
     }
     void allocate(size_t count) override { blocks_.resize(count); }
     void write(std::span<const uint32_t> leafPrims, uint32_t first) const override {
-        const DistinctPrims distinct(leafPrims, mayRepeat_);
+        const DistinctPrims distinct(leafPrims, leafPrims.size() >= repeatsFrom_);
         const std::span<const uint32_t> prims = distinct.get();
         for (size_t base = 0; base < prims.size(); base += kBlockSize) {
             TriangleBlock<kBlockSize>& block = blocks_[first++];
@@ -115,7 +118,7 @@ private:
     static uint32_t blocksFor(size_t prims) { return uint32_t((prims + kBlockSize - 1) / kBlockSize); }
 
     const TriangleMesh& mesh_;
-    bool mayRepeat_;
+    size_t repeatsFrom_;
     TriangleBlocks& blocks_;
 };
 
@@ -201,7 +204,9 @@ WideBvh<N> SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuil
     timings_.binarySeconds += secondsSince(start);
 
     start = std::chrono::steady_clock::now();
-    TriangleBlockWriter writer(mesh, config.quality == BuildQuality::High, blocks_);
+    const size_t repeatsFrom = config.quality == BuildQuality::High ? size_t(std::max(config.spatialMinRefs, 2))
+                                                                     : std::numeric_limits<size_t>::max();
+    TriangleBlockWriter writer(mesh, repeatsFrom, blocks_);
     WideBvh<N> bvh = collapseBvh<N>(binary, writer, config);
     timings_.collapseSeconds += secondsSince(start);
     return bvh;
