@@ -3,6 +3,7 @@
 // packets, streams) calls at a leaf, by the leaf's type: triangle blocks or user primitives (two-level
 // instances among them). A new leaf type (another triangle layout) is a new branch here; the
 // traversals stay as they are.
+#include "kernels/prefetch.h"
 #include "kernels/triangle_leaf.h"
 #include "kernels/user_leaf.h"
 
@@ -27,6 +28,11 @@ struct SceneLeafIntersector {
             if (intersectBlock<TriW, AnyHit>(leaves.blocks[b], s, ray, hit)) return true;
         }
         return false;
+    }
+
+    /// Asks for a triangle leaf's first block ahead of its test.
+    [[gnu::always_inline]] void prefetch(NodeRef leaf) const {
+        if (!leaf.isUserLeaf()) prefetchLines(leaves.blocks + leaf.first(), sizeof(TriangleBlock<kBlockSize>));
     }
 
     /// The active lanes of a packet; any-hit returns the lanes the leaf occludes (their t becomes

@@ -141,6 +141,7 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
                 for (; mask; mask &= mask - 1) {
                     int i = __builtin_ctz(mask);
                     if (node.child[i].bits == NodeRef::empty().bits) continue;
+                    if (node.child[i].isLeaf()) leaves.prefetch(node.child[i]);
                     pushSorted(stack, base, sp,
                                Entry{node.child[i], tEntry[i],
                                      {{node.lowerX[i], node.lowerY[i], node.lowerZ[i]},
