@@ -67,7 +67,7 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
                     }
                 return false;
             },
-            [&](NodeRef leaf) { SceneLeafIntersector<N>{leaves}.prefetch(leaf); }, cost);
+            cost);
         occluded[i] = blocked ? 1 : 0;
     }
 }

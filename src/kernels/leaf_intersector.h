@@ -30,9 +30,9 @@ struct SceneLeafIntersector {
         return false;
     }
 
-    /// Asks for a triangle leaf's first block ahead of its test.
+    /// Asks for a triangle leaf's blocks ahead of their test.
     [[gnu::always_inline]] void prefetch(NodeRef leaf) const {
-        if (!leaf.isUserLeaf()) prefetchLines(leaves.blocks + leaf.first(), sizeof(TriangleBlock<kBlockSize>));
+        if (!leaf.isUserLeaf()) prefetchLines(leaves.blocks + leaf.first(), leaf.count() * sizeof(TriangleBlock<kBlockSize>));
     }
 
     /// The active lanes of a packet; any-hit returns the lanes the leaf occludes (their t becomes

@@ -24,12 +24,11 @@ constexpr int kNodeSimdWidth = N < kMaxWidth ? N : kMaxWidth;
 
 /// Visits the leaves a ray reaches, nearest subtree first (with Ordered; otherwise in node order, which
 /// any-hit traversal prefers: any occluder will do). `leaf(ref)` returns true to stop (any-hit);
-/// `tfar()` is the current culling distance; `prefetch(ref)` asks for a leaf the ray enters as soon as
-/// its node is tested. Callers mark `leaf` always_inline: as a call it costs a vzeroupper and the node
-/// test's set-up again after every leaf.
-template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn, class PrefetchFn>
+/// `tfar()` is the current culling distance. Callers mark `leaf` always_inline: as a call it costs a
+/// vzeroupper and the node test's set-up again after every leaf.
+template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn>
 inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, TfarFn tfar,
-                         LeafFn leaf, PrefetchFn prefetch, TraversalCost& cost) {
+                         LeafFn leaf, TraversalCost& cost) {
     struct Entry {
         NodeRef ref;
         float distance;  ///< where the ray enters the subtree's box
@@ -48,8 +47,6 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
             alignas(64) float tEntry[N];
             const uint32_t hits = intersectChildren(node, tnear, tfar(), tEntry);
             if (hits == 0) goto pop;
-            for (uint32_t m = hits; m; m &= m - 1)
-                if (node.child[__builtin_ctz(m)].isLeaf()) prefetch(node.child[__builtin_ctz(m)]);
             uint32_t mask = hits;
             const int first = __builtin_ctz(mask);
             mask &= mask - 1;
@@ -93,7 +90,7 @@ inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray
         [&](NodeRef leaf) __attribute__((always_inline)) {
             return occluded = leaves.template single<TriW, AnyHit>(leaf, s, ray, hit, cost);
         },
-        [&](NodeRef leaf) { leaves.prefetch(leaf); }, cost);
+        cost);
     return occluded;
 }
 
