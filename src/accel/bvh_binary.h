@@ -121,6 +121,11 @@ constexpr int kMaxBvhDepth = 64;
 /// Callers that reserve it spare the build a copy of the references (and its page faults).
 size_t buildRefCapacity(size_t primCount, const BvhBuildConfig& config);
 
+/// The fewest references a node split spatially has (none at fast quality). A node's references name
+/// distinct primitives (a spatial split sends one copy to each side), so a subtree of fewer
+/// references names each primitive once, as a leaf the collapse makes of it does.
+size_t minSpatialSplitRefs(const BvhBuildConfig& config);
+
 /// Builds over one reference per primitive (at least one; ref.prim its index). At high quality the
 /// splitter clips primitives (without one the build is the fast one). Parallel with oneTBB; the
 /// tree's shape does not depend on the thread count.

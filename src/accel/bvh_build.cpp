@@ -169,7 +169,7 @@ private:
         const ObjectSplit object = objectBins.bestSplit(objectMapping, blockShift());
         SpatialSplit spatial;
         std::optional<SpatialBinMapping> spatialMapping;
-        if (splitter_ && range.spare() > 0 && count >= uint32_t(config_.spatialMinRefs)) {
+        if (splitter_ && range.spare() > 0 && count >= minSpatialSplitRefs(config_)) {
             BuildBox overlap = object.left;
             overlap.intersect(object.right);
             const float overlapArea = overlap.halfArea();
@@ -465,6 +465,11 @@ private:
 size_t buildRefCapacity(size_t primCount, const BvhBuildConfig& config) {
     if (config.quality != BuildQuality::High) return primCount;
     return primCount + size_t(double(primCount) * std::max(0.0f, config.replicationBudget));
+}
+
+size_t minSpatialSplitRefs(const BvhBuildConfig& config) {
+    if (config.quality != BuildQuality::High) return std::numeric_limits<size_t>::max();
+    return size_t(std::max(config.spatialMinRefs, 2));  // one reference is a leaf
 }
 
 BinaryBvh buildBinaryBvh(BuildRefs refs, const BvhBuildConfig& config, const TriangleSplitter* splitter) {

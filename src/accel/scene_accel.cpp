@@ -63,9 +63,8 @@ WideBvh<N> joinBvhs(WideBvh<N> a, WideBvh<N> b) {
 }
 
 /// A leaf's primitives, each once: spatial splits put parts of one triangle in sibling leaves, which
-/// the collapse may merge. A node's references name distinct primitives (a spatial split sends one copy
-/// to each side), so a leaf repeats one only if a spatial split happened inside the subtree it merges,
-/// which had at least config.spatialMinRefs references: smaller leaves (all, by default) skip the sort.
+/// the collapse may merge. Only a leaf of at least minSpatialSplitRefs primitives can repeat one
+/// (smaller ones, all by default, skip the sort).
 class DistinctPrims {
 public:
     DistinctPrims(std::span<const uint32_t> prims, bool mayRepeat) : prims_(prims) {
@@ -204,9 +203,7 @@ WideBvh<N> SceneAccel<N>::buildTriangles(const TriangleMesh& mesh, const BvhBuil
     timings_.binarySeconds += secondsSince(start);
 
     start = std::chrono::steady_clock::now();
-    const size_t repeatsFrom = config.quality == BuildQuality::High ? size_t(std::max(config.spatialMinRefs, 2))
-                                                                     : std::numeric_limits<size_t>::max();
-    TriangleBlockWriter writer(mesh, repeatsFrom, blocks_);
+    TriangleBlockWriter writer(mesh, minSpatialSplitRefs(config), blocks_);
     WideBvh<N> bvh = collapseBvh<N>(binary, writer, config);
     timings_.collapseSeconds += secondsSince(start);
     return bvh;
