@@ -5,6 +5,8 @@
 // to single-ray traversal once few rays remain active (Wald et al. 2001, "Interactive Rendering
 // with Coherent Ray Tracing"; Embree's hybrid packet/single-ray scheme, Benthin et al. 2012).
 // Leaves run the reference's arithmetic per lane, so results are bit-identical.
+#include <type_traits>
+
 #include "kernels/ray_interval.h"
 #include "kernels/traverse_single.h"
 
@@ -88,14 +90,21 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
     const F inf(__builtin_huge_valf());
     const vbool<K> valid = andNot(vbool<K>(true), done);
 
-    struct alignas(64) Entry {
-        F entry;         ///< per ray: where it enters the subtree's box (+inf: it does not)
+    // Closest hit keeps per ray where it enters a subtree, to cull by the hits found later. Any-hit
+    // keeps only which rays enter: a ray's tfar changes only when it is occluded, and then it is done.
+    using Lanes = std::conditional_t<AnyHit, uint32_t, F>;
+    struct alignas(AnyHit ? alignof(NodeRef) : 64) Entry {
+        Lanes lanes;     ///< closest hit: per ray, its entry (+inf: it does not enter); any-hit: the rays that enter
         NodeRef ref;
         float distance;  ///< the nearest ray's entry (or the interval's, below it), which the stack is sorted by
     };
+    auto lanesOf = [&](const F& entry) -> Lanes {
+        if constexpr (AnyHit) return movemask(entry < inf);
+        else return entry;
+    };
     Entry stack[kStackSize<N>];
     int sp = 0;
-    if (any(valid)) stack[sp++] = {select(valid, p.tnear, inf), scene.root, 0.0f};
+    if (any(valid)) stack[sp++] = {lanesOf(select(valid, p.tnear, inf)), scene.root, 0.0f};
     // A coherent packet first tests each node's children by its rays' interval, and each ray only
     // against the children that the interval enters (as Embree's coherent packets do): the per-ray
     // results are the same, with fewer per-ray tests.
@@ -109,8 +118,9 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
     }
     while (sp > 0) {
         Entry e = stack[--sp];
-        vbool<K> active = e.entry <= h.t * F(kRobustFarScale);
-        if constexpr (AnyHit) active = andNot(active, done);
+        vbool<K> active;
+        if constexpr (AnyHit) active = maskFromBits<K>(e.lanes & ~movemask(done));
+        else active = e.lanes <= h.t * F(kRobustFarScale);
         uint32_t activeBits = movemask(active);
         if (!activeBits) continue;
         if (__builtin_popcount(activeBits) <= switchToSingle) {
@@ -145,6 +155,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
             // is kept).
             // The nearest so far waits in registers rather than on the stack.
             Entry nearest;
+            if constexpr (AnyHit) nearest = {};  // found guards every use; g++ cannot tell for a mask
             bool found = false;
             const int base = sp;
             uint32_t candidates = (1u << N) - 1;
@@ -163,7 +174,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
                 // without a horizontal minimum per child).
                 float distance = 0.0f;
                 if constexpr (!AnyHit) distance = byInterval ? intervalEntry[i] : reduceMin(entry);
-                const Entry e{entry, node.child[i], distance};
+                const Entry e{lanesOf(entry), node.child[i], distance};
                 if (!found) {
                     nearest = e;
                     found = true;
@@ -178,7 +189,8 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
             }
             if (!found) goto pop;
             ref = nearest.ref;
-            active = nearest.entry < inf;
+            if constexpr (AnyHit) active = maskFromBits<K>(nearest.lanes);
+            else active = nearest.lanes < inf;
         }
         {
             const vbool<K> occluded = leaves.template packet<K, AnyHit>(ref, p, active, h, user, cost);

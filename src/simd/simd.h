@@ -89,6 +89,18 @@ template <int W> using vfloat = typename Types<W>::Float;
 template <int W> using vint = typename Types<W>::Int;
 template <int W> using vbool = typename Types<W>::Bool;
 
+/// The W-wide mask whose lane i is bit i of `bits`.
+template <int W>
+inline vbool<W> maskFromBits(uint32_t bits) {
+    if constexpr (W == 4) return maskFromBits4(bits);
+#if defined(__AVX2__)
+    else if constexpr (W == 8) return maskFromBits8(bits);
+#endif
+#if defined(__AVX512F__)
+    else if constexpr (W == 16) return maskFromBits16(bits);
+#endif
+}
+
 /// A W-wide vector whose lanes [4j, 4j + 4) are quarters[j].
 template <int W>
 inline vfloat<W> fromQuarters(const vfloat4* quarters) {
