@@ -27,8 +27,8 @@ constexpr int kNodeSimdWidth = N < kMaxWidth ? N : kMaxWidth;
 /// `tfar()` is the current culling distance. Callers mark `leaf` always_inline: as a call it costs a
 /// vzeroupper and the node test's set-up again after every leaf.
 template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn>
-inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, TfarFn tfar,
-                         LeafFn leaf, TraversalCost& cost) {
+inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, const TfarFn& tfar,
+                         const LeafFn& leaf, TraversalCost& cost) {
     struct Entry {
         NodeRef ref;
         float distance;  ///< where the ray enters the subtree's box
