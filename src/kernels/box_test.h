@@ -117,7 +117,8 @@ struct ChildBoxTest {
             slab = broadcast<W>(r.slab);
     }
 
-    /// Returns the bit mask of the children hit and writes their entry distances.
+    /// Returns the bit mask of the children hit and writes their entry distances (unless tEntryOut is
+    /// null, which callers pass as a constant).
     [[gnu::always_inline]] uint32_t operator()(const WideNode<N>& node, float tnear, float tfar,
                                                float* tEntryOut) const {
         const float* planes = node.lowerX;  // the six plane arrays, N floats each (WideNode::planes)
@@ -127,7 +128,7 @@ struct ChildBoxTest {
                 float tEntry, tExit;
                 slabInterval(planes[nx + i], planes[fx + i], planes[ny + i], planes[fy + i], planes[nz + i],
                              planes[fz + i], slab, tnear, tfar, tEntry, tExit);
-                tEntryOut[i] = tEntry;
+                if (tEntryOut) tEntryOut[i] = tEntry;
                 mask |= uint32_t(tEntry <= tExit) << i;
             }
             return mask;
@@ -139,7 +140,7 @@ struct ChildBoxTest {
                 slabInterval(F::load(planes + nx + c), F::load(planes + fx + c), F::load(planes + ny + c),
                              F::load(planes + fy + c), F::load(planes + nz + c), F::load(planes + fz + c), slab,
                              F(tnear), F(tfar), tEntry, tExit);
-                tEntry.store(tEntryOut + c);
+                if (tEntryOut) tEntry.store(tEntryOut + c);
                 mask |= simd::movemask(tEntry <= tExit) << c;
             }
             return mask;

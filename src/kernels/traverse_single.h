@@ -3,6 +3,7 @@
 // hit culled, any-hit mode stopping at the first occluder. NodeW = 1 and TriW = 1 give the scalar
 // reference; NodeW = N and TriW = kBlockSize give the same answers with SIMD box and triangle tests.
 #include <cstdint>
+#include <type_traits>
 
 #include "accel/bvh_view.h"
 #include "kernels/box_test.h"
@@ -29,23 +30,32 @@ constexpr int kNodeSimdWidth = N < kMaxWidth ? N : kMaxWidth;
 template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn>
 inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, const TfarFn& tfar,
                          const LeafFn& leaf, TraversalCost& cost) {
-    struct Entry {
+    struct OrderedEntry {
         NodeRef ref;
         float distance;  ///< where the ray enters the subtree's box
     };
+    // Unordered traversal is any-hit: its tfar changes only where it stops, so a pushed subtree is never
+    // culled when popped, and the stack keeps no distances.
+    using Entry = std::conditional_t<Ordered, OrderedEntry, NodeRef>;
     const ChildBoxTest<N, NodeW> intersectChildren(box);
     Entry stack[kStackSize<N> + N];  // room for the N entries pushNearestLast stores at once
     int sp = 0;
-    stack[sp++] = {root, tnear};
+    if constexpr (Ordered) stack[sp++] = {root, tnear};
+    else stack[sp++] = root;
     while (sp > 0) {
-        Entry e = stack[--sp];
-        if (e.distance > tfar() * kRobustFarScale) continue;
-        NodeRef ref = e.ref;
+        NodeRef ref;
+        if constexpr (Ordered) {
+            const Entry e = stack[--sp];
+            if (e.distance > tfar() * kRobustFarScale) continue;
+            ref = e.ref;
+        } else {
+            ref = stack[--sp];
+        }
         while (!ref.isLeaf()) {
             ++cost.nodes;
             const WideNode<N>& node = nodes[ref.index()];
             alignas(64) float tEntry[N];
-            const uint32_t hits = intersectChildren(node, tnear, tfar(), tEntry);
+            const uint32_t hits = intersectChildren(node, tnear, tfar(), Ordered ? tEntry : nullptr);
             if (hits == 0) goto pop;
             uint32_t mask = hits;
             const int first = __builtin_ctz(mask);
@@ -55,23 +65,21 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
                 continue;
             }
             if constexpr (!Ordered) {
-                for (; mask; mask &= mask - 1) {
-                    const int i = __builtin_ctz(mask);
-                    stack[sp++] = {node.child[i], tEntry[i]};
-                }
+                for (; mask; mask &= mask - 1) stack[sp++] = node.child[__builtin_ctz(mask)];
                 ref = node.child[first];
                 continue;
+            } else {
+                const int second = __builtin_ctz(mask);
+                mask &= mask - 1;
+                if (mask == 0) {  // the most common case after one hit: no sort, one push
+                    const bool secondNearer = tEntry[second] < tEntry[first];
+                    const int nearer = secondNearer ? second : first, farther = secondNearer ? first : second;
+                    stack[sp++] = {node.child[farther], tEntry[farther]};
+                    ref = node.child[nearer];
+                    continue;
+                }
+                ref = pushNearestLast(stack, sp, node, hits, tEntry);  // three or more
             }
-            const int second = __builtin_ctz(mask);
-            mask &= mask - 1;
-            if (mask == 0) {  // the most common case after one hit: no sort, one push
-                const bool secondNearer = tEntry[second] < tEntry[first];
-                const int nearer = secondNearer ? second : first, farther = secondNearer ? first : second;
-                stack[sp++] = {node.child[farther], tEntry[farther]};
-                ref = node.child[nearer];
-                continue;
-            }
-            ref = pushNearestLast(stack, sp, node, hits, tEntry);  // three or more
         }
         if (leaf(ref)) return;
     pop:;
