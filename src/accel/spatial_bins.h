@@ -65,14 +65,7 @@ struct SpatialBins {
     /// Bins refs[0], refs[stride], refs[2 * stride], ... (refCount of them).
     void add(const BuildRef* refs, size_t refCount, size_t stride, const SpatialBinMapping& mapping,
              const TriangleSplitter& splitter) {
-        // The clipping's loads of triangles and vertices miss the cache (references are sorted by
-        // place, triangles are not): prefetched a few references ahead, indices before vertices.
-        constexpr size_t kIndicesAhead = 16, kVerticesAhead = 8;
-        addInterleaved(*this, refCount, [&](SpatialBins& bins, size_t i) {
-            if (i + kIndicesAhead < refCount) splitter.prefetchIndices(refs[(i + kIndicesAhead) * stride].prim);
-            if (i + kVerticesAhead < refCount) splitter.prefetchVertices(refs[(i + kVerticesAhead) * stride].prim);
-            bins.add(refs[i * stride], mapping, splitter);
-        });
+        addInterleaved(*this, refCount, [&](SpatialBins& bins, size_t i) { bins.add(refs[i * stride], mapping, splitter); });
     }
 
     /// Counts the reference where it starts and ends along each axis, and grows each bin it overlaps

@@ -107,13 +107,6 @@ public:
         return {mesh_.positions[t.x], mesh_.positions[t.y], mesh_.positions[t.z]};
     }
 
-    /// Prefetches triangle(prim)'s vertex indices; prefetchVertices, issued later, its vertices.
-    void prefetchIndices(uint32_t prim) const { _mm_prefetch(reinterpret_cast<const char*>(&mesh_.triangles[prim]), _MM_HINT_T0); }
-    void prefetchVertices(uint32_t prim) const {
-        const glm::uvec3& t = mesh_.triangles[prim];
-        for (int i = 0; i < 3; ++i) _mm_prefetch(reinterpret_cast<const char*>(&mesh_.positions[t[i]]), _MM_HINT_T0);
-    }
-
 private:
     const TriangleMesh& mesh_;
 };
