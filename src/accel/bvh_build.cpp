@@ -24,11 +24,16 @@ constexpr int kMedianDepth = kMaxBvhDepth - 24;  // leaves room for log2(2^24) m
 constexpr uint32_t kParallelThreshold = 4096;    // references (or samples): above, binning runs in parallel and subtrees as tasks
 constexpr uint32_t kParallelGrain = 4096;
 // Spatial binning of nodes of at least kSpatialSampleMinRefs references is tried on a sample first
-// (spatialSplitMayWin). Measured against binning all (wideray info --quality high, one thread): the
-// same SAH cost on the coffee maker, the kitchen and Sponza (the dragon's +0.1%), the kitchen's build
-// 674 -> 617 ms, the coffee maker's 124 -> 110 ms; 4096 or 1024 references, within noise of 2048.
-constexpr uint32_t kSpatialSampleMinRefs = 2048;
+// (spatialAxesToBin), every kSpatialSampleStride-th reference. Measured against binning all (wideray info --quality high, one thread): the same SAH cost
+// on the coffee maker, the kitchen and Sponza (the dragon's +0.1%), the kitchen's build 674 -> 617 ms.
+// Sampling from 256 references instead of 2048, and binning all references only along the axes the
+// sample favours: the kitchen's binary build 481 -> 432 ms (minima of 10, ABBA), SAH cost 9.97 -> 9.91,
+// Sponza's 20.52 -> 20.51, the dragon's, the coffee maker's and the bunny's the same.
+constexpr uint32_t kSpatialSampleMinRefs = 256;
 constexpr uint32_t kSpatialSampleStride = 8;
+// An axis is binned in full where its sample's best split costs at most this much more than the best
+// axis's. 1.1 or 1.2: Sponza's SAH cost 20.64 or 20.61; no limit: the kitchen's 9.97 (9.91 here).
+constexpr float kSpatialAxisSlack = 1.5f;
 
 /// A node's references: [begin, end) in use, [end, capacityEnd) free for the duplicates that spatial
 /// splits below it create. Bounds of the references and of their center2.
@@ -176,7 +181,8 @@ private:
             if (object.axis < 0 || (overlapArea > config_.spatialOverlap * rootHalfArea_ &&
                                     overlapArea > config_.spatialNodeOverlap * range.bounds.halfArea())) {
                 spatialMapping.emplace(range.bounds, config_.spatialBinCount);
-                if (spatialSplitMayWin(range, *spatialMapping, object.cost)) {
+                spatialMapping->splittableAxes = spatialAxesToBin(range, *spatialMapping, object.cost);
+                if (spatialMapping->splittableAxes != 0) {
                     SpatialBins spatialBins(spatialMapping->count);
                     binSpatially(range, *spatialMapping, spatialBins, 1);
                     spatial = spatialBins.bestSplit(*spatialMapping, blockShift());
@@ -214,19 +220,25 @@ private:
             });
     }
 
-    /// Whether binning all references spatially may find a split that beats the object split. Large
-    /// nodes bin a sample first (every kSpatialSampleStride-th reference, counted that many times),
-    /// whose best split must beat it: most spatial binnings of large nodes find no better split (of
-    /// the coffee maker's, 9 in 10). The sample's boxes err small, which favours binning all, but its
-    /// counts are estimates either way, so a split that would have won can be missed (measured: the
-    /// same SAH cost to two decimals on the coffee maker, the kitchen and Sponza, the dragon's +0.1%).
-    /// Without an object split (infinite cost) all are binned.
-    bool spatialSplitMayWin(const BuildRange& range, const SpatialBinMapping& mapping, float objectCost) const {
-        if (range.size() < kSpatialSampleMinRefs || objectCost == std::numeric_limits<float>::infinity()) return true;
+    /// The axes along which to bin all references spatially (none: the object split wins). A sample
+    /// is binned first, its counts scaled to the node's size: most spatial binnings find no split
+    /// better than the object split (of the coffee maker's large nodes, 9 in 10), and where one may,
+    /// the axes whose best split in the sample is far (kSpatialAxisSlack) behind the best axis's rarely
+    /// win when all are binned. The sample's boxes err small, which favours binning all, but its counts
+    /// are estimates either way, so a split that would have won can be missed (measured: see
+    /// kSpatialSampleStride). Nodes too small to sample, and those without an object split (infinite
+    /// cost), are binned along every axis.
+    int spatialAxesToBin(const BuildRange& range, const SpatialBinMapping& mapping, float objectCost) const {
+        if (range.size() < kSpatialSampleMinRefs || objectCost == std::numeric_limits<float>::infinity())
+            return mapping.splittableAxes;
         SpatialBins sample(mapping.count);
         binSpatially(range, mapping, sample, kSpatialSampleStride);
         sample.scaleCounts(kSpatialSampleStride);
-        return sample.bestSplit(mapping, blockShift()).cost < objectCost;
+        const SpatialSplit best = sample.bestSplit(mapping, blockShift());
+        int axes = 0;
+        for (int a = 0; a < 3; ++a)
+            if (best.axisCosts[a] < objectCost && best.axisCosts[a] <= best.cost * kSpatialAxisSlack) axes |= 1 << a;
+        return axes;
     }
 
     /// In place, by the bins the binning left in the references. The children's boxes are the

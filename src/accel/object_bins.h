@@ -37,6 +37,8 @@ struct BestPlane {
     int bin = 0;  ///< the plane is after this bin
     float cost = std::numeric_limits<float>::infinity();  ///< the sum of both sides' SAH costs
     uint32_t leftCount = 0, rightCount = 0;
+    float axisCosts[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
+                          std::numeric_limits<float>::infinity()};  ///< the best plane's cost along each axis
 };
 
 /// The SAH costs of three boxes (the three axes' sides, in lanes x, y, z) holding `counts` primitives,
@@ -98,6 +100,8 @@ BestPlane sweepPlanes(const AxisBinBoxes<MaxBins>& boxes, int bins, int axes, ui
     BestPlane best;
     for (int a = 0; a < 3; ++a)
         if (bin[a] >= 0 && costs[a] < best.cost) best = {a, bin[a], costs[a], left[a], right[a]};
+    for (int a = 0; a < 3; ++a)
+        if (bin[a] >= 0) best.axisCosts[a] = costs[a];
     return best;
 }
 

@@ -17,7 +17,7 @@ constexpr int kMaxSpatialBins = 32;
 struct SpatialBinMapping {
     int count = 0;
     __m128 offset, scale;
-    int splittableAxes = 0;
+    int splittableAxes = 0;  ///< bit a: binned along axis a (the box has extent there, and the builder wants it)
     float planes[3][kMaxSpatialBins + 1];  ///< [axis][bin]: the bin's lower plane
 
     SpatialBinMapping(const BuildBox& bounds, int binCount) : count(binCount) {
@@ -69,8 +69,8 @@ struct SpatialBins {
     }
 
     /// Counts the reference where it starts and ends along each axis, and grows each bin it overlaps
-    /// by the part of its triangle inside. Axes that are not splittable have all references in bin 0,
-    /// which the sweep ignores.
+    /// along the mapping's splittable axes by the part of its triangle inside. The sweep ignores the
+    /// other axes: those the node's box is flat along, and those the builder chose not to bin.
     void add(const BuildRef& ref, const SpatialBinMapping& mapping, const TriangleSplitter& splitter) {
         const BuildBox box(ref);
         const __m128i firstBins = mapping.binOf(box.lower), lastBins = mapping.binOf(box.upper);
@@ -81,12 +81,15 @@ struct SpatialBins {
             ++enter[first[a]][a];
             ++exit[last[a]][a];
         }
-        if ((_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(firstBins, lastBins))) & 7) == 7) {
-            for (int a = 0; a < 3; ++a) boxes.grow(a, first[a], box);  // inside one bin: nothing to clip
+        const int axes = mapping.splittableAxes;
+        if (((_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(firstBins, lastBins))) | ~axes) & 7) == 7) {
+            for (int a = 0; a < 3; ++a)
+                if (axes >> a & 1) boxes.grow(a, first[a], box);  // inside one bin: nothing to clip
             return;
         }
         const SplitTriangle triangle = splitter.triangle(ref.prim);
         for (int a = 0; a < 3; ++a) {
+            if (!(axes >> a & 1)) continue;
             BuildBox rest = box;
             for (int b = first[a]; b < last[a]; ++b) {
                 BuildBox left, right;
