@@ -24,15 +24,17 @@ constexpr int kMedianDepth = kMaxBvhDepth - 24;  // leaves room for log2(2^24) m
 constexpr uint32_t kParallelThreshold = 4096;    // references (or samples): above, binning runs in parallel and subtrees as tasks
 constexpr uint32_t kParallelGrain = 4096;
 // Spatial binning of nodes of at least kSpatialSampleMinRefs references is tried on a sample first
-// (spatialAxesToBin), every kSpatialSampleStride-th reference. Measured against binning all (wideray info --quality high, one thread): the same SAH cost
-// on the coffee maker, the kitchen and Sponza (the dragon's +0.1%), the kitchen's build 674 -> 617 ms.
-// Sampling from 256 references instead of 2048, and binning all references only along the axes the
-// sample favours: the kitchen's binary build 481 -> 432 ms (minima of 10, ABBA), SAH cost 9.97 -> 9.91,
-// Sponza's 20.52 -> 20.51, the dragon's, the coffee maker's and the bunny's the same.
+// (spatialAxesToBin), every kSpatialSampleStride-th reference. Measured against binning all
+// (`wideray info --quality high`, one thread): the same SAH cost on the coffee maker, the kitchen and
+// Sponza (the dragon's +0.1%), the kitchen's build 674 -> 617 ms. Sampling from 256 references instead
+// of 2048, and binning all of them only along the axes the sample favours: the kitchen's binary build
+// 481 -> 432 ms (minima of 10, alternated), SAH cost 9.97 -> 9.91, Sponza's 20.52 -> 20.51, the
+// dragon's, the coffee maker's and the bunny's the same; along every axis the sample's split beats the
+// object split on, 8% slower than with the slack below (and the kitchen's SAH cost 9.97).
 constexpr uint32_t kSpatialSampleMinRefs = 256;
 constexpr uint32_t kSpatialSampleStride = 8;
 // An axis is binned in full where its sample's best split costs at most this much more than the best
-// axis's. 1.1 or 1.2: Sponza's SAH cost 20.64 or 20.61; no limit: the kitchen's 9.97 (9.91 here).
+// axis's. 1.1 or 1.2: Sponza's SAH cost 20.64 or 20.61; the best axis alone: 20.69.
 constexpr float kSpatialAxisSlack = 1.5f;
 
 /// A node's references: [begin, end) in use, [end, capacityEnd) free for the duplicates that spatial

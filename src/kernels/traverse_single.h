@@ -25,7 +25,8 @@ constexpr int kNodeSimdWidth = N < kMaxWidth ? N : kMaxWidth;
 
 /// Visits the leaves a ray reaches, nearest subtree first (with Ordered; otherwise in node order, which
 /// any-hit traversal prefers: any occluder will do). `leaf(ref)` returns true to stop (any-hit);
-/// `tfar()` is the current culling distance. Callers mark `leaf` always_inline: as a call it costs a
+/// `tfar()` is the current culling distance, which without Ordered must not change but where `leaf`
+/// stops. Callers mark `leaf` always_inline: as a call it costs a
 /// vzeroupper and the node test's set-up again after every leaf.
 template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn>
 inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, const TfarFn& tfar,
@@ -34,8 +35,8 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
         NodeRef ref;
         float distance;  ///< where the ray enters the subtree's box
     };
-    // Unordered traversal is any-hit: its tfar changes only where it stops, so a pushed subtree is never
-    // culled when popped, and the stack keeps no distances.
+    // Unordered, tfar changes only where the traversal stops, so a pushed subtree is never culled when
+    // popped: the stack keeps no distances.
     using Entry = std::conditional_t<Ordered, OrderedEntry, NodeRef>;
     const ChildBoxTest<N, NodeW> intersectChildren(box);
     Entry stack[kStackSize<N> + N];  // room for the N entries pushNearestLast stores at once
