@@ -117,10 +117,20 @@ struct ChildBoxTest {
             slab = broadcast<W>(r.slab);
     }
 
-    /// Returns the bit mask of the children hit and writes their entry distances (unless tEntryOut is
-    /// null, which callers pass as a constant).
+    /// Returns the bit mask of the children hit and writes their entry distances.
     [[gnu::always_inline]] uint32_t operator()(const WideNode<N>& node, float tnear, float tfar,
                                                float* tEntryOut) const {
+        return test<true>(node, tnear, tfar, tEntryOut);
+    }
+
+    /// The mask alone, for traversals that do not order the children.
+    [[gnu::always_inline]] uint32_t hits(const WideNode<N>& node, float tnear, float tfar) const {
+        return test<false>(node, tnear, tfar, nullptr);
+    }
+
+private:
+    template <bool StoreEntries>
+    [[gnu::always_inline]] uint32_t test(const WideNode<N>& node, float tnear, float tfar, float* tEntryOut) const {
         const float* planes = node.lowerX;  // the six plane arrays, N floats each (WideNode::planes)
         if constexpr (W == 1) {
             uint32_t mask = 0;
@@ -128,7 +138,7 @@ struct ChildBoxTest {
                 float tEntry, tExit;
                 slabInterval(planes[nx + i], planes[fx + i], planes[ny + i], planes[fy + i], planes[nz + i],
                              planes[fz + i], slab, tnear, tfar, tEntry, tExit);
-                if (tEntryOut) tEntryOut[i] = tEntry;
+                if constexpr (StoreEntries) tEntryOut[i] = tEntry;
                 mask |= uint32_t(tEntry <= tExit) << i;
             }
             return mask;
@@ -140,7 +150,7 @@ struct ChildBoxTest {
                 slabInterval(F::load(planes + nx + c), F::load(planes + fx + c), F::load(planes + ny + c),
                              F::load(planes + fy + c), F::load(planes + nz + c), F::load(planes + fz + c), slab,
                              F(tnear), F(tfar), tEntry, tExit);
-                if (tEntryOut) tEntry.store(tEntryOut + c);
+                if constexpr (StoreEntries) tEntry.store(tEntryOut + c);
                 mask |= simd::movemask(tEntry <= tExit) << c;
             }
             return mask;

@@ -3,7 +3,6 @@
 // hit culled, any-hit mode stopping at the first occluder. NodeW = 1 and TriW = 1 give the scalar
 // reference; NodeW = N and TriW = kBlockSize give the same answers with SIMD box and triangle tests.
 #include <cstdint>
-#include <type_traits>
 
 #include "accel/bvh_view.h"
 #include "kernels/box_test.h"
@@ -26,37 +25,31 @@ constexpr int kNodeSimdWidth = N < kMaxWidth ? N : kMaxWidth;
 /// Visits the leaves a ray reaches, nearest subtree first (with Ordered; otherwise in node order, which
 /// any-hit traversal prefers: any occluder will do). `leaf(ref)` returns true to stop (any-hit);
 /// `tfar()` is the current culling distance, which without Ordered must not change but where `leaf`
-/// stops. Callers mark `leaf` always_inline: as a call it costs a
-/// vzeroupper and the node test's set-up again after every leaf.
+/// stops: a pushed subtree is then never culled when popped, and entry distances are not computed.
+/// Callers mark `leaf` always_inline: as a call it costs a vzeroupper and the node test's set-up again
+/// after every leaf.
 template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn>
 inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, const TfarFn& tfar,
                          const LeafFn& leaf, TraversalCost& cost) {
-    struct OrderedEntry {
+    struct Entry {
         NodeRef ref;
         float distance;  ///< where the ray enters the subtree's box
     };
-    // Unordered, tfar changes only where the traversal stops, so a pushed subtree is never culled when
-    // popped: the stack keeps no distances.
-    using Entry = std::conditional_t<Ordered, OrderedEntry, NodeRef>;
     const ChildBoxTest<N, NodeW> intersectChildren(box);
     Entry stack[kStackSize<N> + N];  // room for the N entries pushNearestLast stores at once
     int sp = 0;
-    if constexpr (Ordered) stack[sp++] = {root, tnear};
-    else stack[sp++] = root;
+    stack[sp++] = {root, tnear};
     while (sp > 0) {
-        NodeRef ref;
-        if constexpr (Ordered) {
-            const Entry e = stack[--sp];
-            if (e.distance > tfar() * kRobustFarScale) continue;
-            ref = e.ref;
-        } else {
-            ref = stack[--sp];
-        }
+        Entry e = stack[--sp];
+        if (Ordered && e.distance > tfar() * kRobustFarScale) continue;
+        NodeRef ref = e.ref;
         while (!ref.isLeaf()) {
             ++cost.nodes;
             const WideNode<N>& node = nodes[ref.index()];
             alignas(64) float tEntry[N];
-            const uint32_t hits = intersectChildren(node, tnear, tfar(), Ordered ? tEntry : nullptr);
+            uint32_t hits;
+            if constexpr (Ordered) hits = intersectChildren(node, tnear, tfar(), tEntry);
+            else hits = intersectChildren.hits(node, tnear, tfar());
             if (hits == 0) goto pop;
             uint32_t mask = hits;
             const int first = __builtin_ctz(mask);
@@ -66,21 +59,23 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
                 continue;
             }
             if constexpr (!Ordered) {
-                for (; mask; mask &= mask - 1) stack[sp++] = node.child[__builtin_ctz(mask)];
+                for (; mask; mask &= mask - 1) {
+                    const int i = __builtin_ctz(mask);
+                    stack[sp++] = {node.child[i], 0.0f};
+                }
                 ref = node.child[first];
                 continue;
-            } else {
-                const int second = __builtin_ctz(mask);
-                mask &= mask - 1;
-                if (mask == 0) {  // the most common case after one hit: no sort, one push
-                    const bool secondNearer = tEntry[second] < tEntry[first];
-                    const int nearer = secondNearer ? second : first, farther = secondNearer ? first : second;
-                    stack[sp++] = {node.child[farther], tEntry[farther]};
-                    ref = node.child[nearer];
-                    continue;
-                }
-                ref = pushNearestLast(stack, sp, node, hits, tEntry);  // three or more
             }
+            const int second = __builtin_ctz(mask);
+            mask &= mask - 1;
+            if (mask == 0) {  // the most common case after one hit: no sort, one push
+                const bool secondNearer = tEntry[second] < tEntry[first];
+                const int nearer = secondNearer ? second : first, farther = secondNearer ? first : second;
+                stack[sp++] = {node.child[farther], tEntry[farther]};
+                ref = node.child[nearer];
+                continue;
+            }
+            ref = pushNearestLast(stack, sp, node, hits, tEntry);  // three or more
         }
         if (leaf(ref)) return;
     pop:;
