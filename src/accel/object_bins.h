@@ -37,8 +37,9 @@ struct BestPlane {
     int bin = 0;  ///< the plane is after this bin
     float cost = std::numeric_limits<float>::infinity();  ///< the sum of both sides' SAH costs
     uint32_t leftCount = 0, rightCount = 0;
+    /// The best plane's cost along each axis (cost is the least of them).
     float axisCosts[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
-                          std::numeric_limits<float>::infinity()};  ///< the best plane's cost along each axis
+                          std::numeric_limits<float>::infinity()};
 };
 
 /// The SAH costs of three boxes (the three axes' sides, in lanes x, y, z) holding `counts` primitives,
@@ -98,10 +99,17 @@ BestPlane sweepPlanes(const AxisBinBoxes<MaxBins>& boxes, int bins, int axes, ui
     _mm_store_si128(reinterpret_cast<__m128i*>(left), bestLeft);
     _mm_store_si128(reinterpret_cast<__m128i*>(right), bestRight);
     BestPlane best;
-    for (int a = 0; a < 3; ++a)
-        if (bin[a] >= 0 && costs[a] < best.cost) best = {a, bin[a], costs[a], left[a], right[a]};
-    for (int a = 0; a < 3; ++a)
-        if (bin[a] >= 0) best.axisCosts[a] = costs[a];
+    for (int a = 0; a < 3; ++a) {
+        if (bin[a] < 0) continue;
+        best.axisCosts[a] = costs[a];
+        if (costs[a] < best.cost) {
+            best.axis = a;
+            best.bin = bin[a];
+            best.cost = costs[a];
+            best.leftCount = left[a];
+            best.rightCount = right[a];
+        }
+    }
     return best;
 }
 
