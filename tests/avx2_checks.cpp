@@ -12,4 +12,6 @@ ChildOrderResult runPushNearestLastAvx2(const float* distances, uint32_t mask) {
 
 int laneStateMismatchesAvx2(const Ray* rays, int count) { return laneStateMismatches(rays, count); }
 
+int streamSlotStateMismatchesAvx2(const Ray* rays, int count) { return streamSlotStateMismatches(rays, count); }
+
 } // namespace wideray::test

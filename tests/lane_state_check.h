@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "kernels/ray_state.h"
+#include "kernels/traverse_stream.h"
 
 namespace wideray::test {
 inline namespace WIDERAY_ISA {
@@ -27,9 +28,22 @@ inline int laneStateMismatches(const Ray* rays, int count) {
     return mismatches;
 }
 
+/// The same for the stream slots that loadStream fills from `rays` (slotState).
+inline int streamSlotStateMismatches(const Ray* rays, int count) {
+    StreamWorkspace ws;
+    const size_t n = loadStream<kMaxWidth>(rays, size_t(count), ws);
+    int mismatches = 0;
+    for (size_t slot = 0; slot < n; ++slot) {
+        const SingleRayState fromStream = slotState(ws, int32_t(slot)), own = makeSingleRayState(rays[ws.rayOf[slot]]);
+        mismatches += std::memcmp(&fromStream, &own, sizeof(SingleRayState)) != 0;
+    }
+    return mismatches;
+}
+
 } // namespace WIDERAY_ISA
 
 /// The same compiled for AVX2 (avx2_checks.cpp): call only where the CPU has it.
 int laneStateMismatchesAvx2(const Ray* rays, int count);
+int streamSlotStateMismatchesAvx2(const Ray* rays, int count);
 
 } // namespace wideray::test

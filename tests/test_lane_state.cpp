@@ -10,11 +10,9 @@
 namespace wideray::test {
 namespace {
 
-/// Packets hand rays over to single-ray traversal with each lane's state taken from the packet's
-/// (laneState); it must be makeSingleRayState's to the bit, or the handed-over rays would not give
-/// the reference's hits. Directions of every octant and dominant axis, with zero, negative-zero,
-/// tiny and huge components; origins near and far; some invalid rays among them.
-TEST(LaneState, EqualsSingleRayStateOnEveryIsa) {
+/// Directions of every octant and dominant axis, with zero, negative-zero, tiny and huge components;
+/// origins near and far; some invalid rays among them.
+std::vector<Ray> awkwardRays() {
     std::mt19937 random(11);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f), far(-1e6f, 1e6f);
     const float special[] = {0.0f, -0.0f, 1e-30f, -1e-30f, 1e30f, -3.0f, 0.5f};
@@ -34,9 +32,26 @@ TEST(LaneState, EqualsSingleRayStateOnEveryIsa) {
         r.tfar = i % 97 == 0 ? -1.0f : std::numeric_limits<float>::infinity();  // a few invalid
         rays.push_back(r);
     }
+    return rays;
+}
+
+/// Packets hand rays over to single-ray traversal with each lane's state taken from the packet's
+/// (laneState); it must be makeSingleRayState's to the bit, or the handed-over rays would not give
+/// the reference's hits.
+TEST(LaneState, EqualsSingleRayStateOnEveryIsa) {
+    const std::vector<Ray> rays = awkwardRays();
     EXPECT_EQ(laneStateMismatches(rays.data(), int(rays.size())), 0);
     if (cpuSupports(Isa::Avx2)) {
         EXPECT_EQ(laneStateMismatchesAvx2(rays.data(), int(rays.size())), 0);
+    }
+}
+
+/// Streams hand rays over to single-ray traversal in the same way (slotState).
+TEST(LaneState, StreamSlotStateEqualsSingleRayStateOnEveryIsa) {
+    const std::vector<Ray> rays = awkwardRays();
+    EXPECT_EQ(streamSlotStateMismatches(rays.data(), int(rays.size())), 0);
+    if (cpuSupports(Isa::Avx2)) {
+        EXPECT_EQ(streamSlotStateMismatchesAvx2(rays.data(), int(rays.size())), 0);
     }
 }
 

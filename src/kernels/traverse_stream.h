@@ -408,6 +408,13 @@ inline Hit slotHit(const StreamWorkspace& ws, int32_t s) {
     return {ws.tfar[s], 0, 0, kInvalidId, kInvalidId};
 }
 
+/// The single-ray state of a stream slot: what makeSingleRayState computes for its ray (loadStream
+/// computed the same constants, lane by lane), without its six divisions.
+inline SingleRayState slotState(const StreamWorkspace& ws, int32_t s) {
+    return {makeBoxRay(makeSlabRay(ws.ox[s], ws.oy[s], ws.oz[s], ws.rdx[s], ws.rdy[s], ws.rdz[s])),
+            {ws.ox[s], ws.oy[s], ws.oz[s], ws.kx[s], ws.ky[s], ws.kz[s], ws.sx[s], ws.sy[s], ws.sz[s]}};
+}
+
 template <int N, bool AnyHit, class Leaves>
 inline void traceListSingly(const SceneView<N>& scene, const Leaves& leaves, const Ray* rays, const StreamEntry& e,
                             StreamWorkspace& ws) {
@@ -419,13 +426,12 @@ inline void traceListSingly(const SceneView<N>& scene, const Leaves& leaves, con
         TraversalCost cost;
         bool occluded;
         if (e.ref.isLeaf()) {
-            // The triangle test's part of the ray state is in the stream already: no divisions.
-            SingleRayState state;
+            SingleRayState state;  // the triangle test needs no more than this part
             state.woop = {ws.ox[s], ws.oy[s], ws.oz[s], ws.kx[s], ws.ky[s], ws.kz[s], ws.sx[s], ws.sy[s], ws.sz[s]};
             occluded = leaves.template single<kBlockSize, AnyHit>(e.ref, state, ray, hit, cost);
         } else {
-            occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(scene, e.ref, ray,
-                                                                                        makeSingleRayState(ray), hit, cost);
+            occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(scene, e.ref, ray, slotState(ws, s),
+                                                                                        hit, cost);
         }
         if (ws.countCost) {
             ws.costNodes[s] += cost.nodes;
