@@ -408,11 +408,15 @@ inline Hit slotHit(const StreamWorkspace& ws, int32_t s) {
     return {ws.tfar[s], 0, 0, kInvalidId, kInvalidId};
 }
 
+/// The triangle test's part of a stream slot's single-ray state.
+inline WatertightRay<float, int32_t> slotWoop(const StreamWorkspace& ws, int32_t s) {
+    return {ws.ox[s], ws.oy[s], ws.oz[s], ws.kx[s], ws.ky[s], ws.kz[s], ws.sx[s], ws.sy[s], ws.sz[s]};
+}
+
 /// The single-ray state of a stream slot: what makeSingleRayState computes for its ray (loadStream
 /// computed the same constants, lane by lane), without its six divisions.
 inline SingleRayState slotState(const StreamWorkspace& ws, int32_t s) {
-    return {makeBoxRay(makeSlabRay(ws.ox[s], ws.oy[s], ws.oz[s], ws.rdx[s], ws.rdy[s], ws.rdz[s])),
-            {ws.ox[s], ws.oy[s], ws.oz[s], ws.kx[s], ws.ky[s], ws.kz[s], ws.sx[s], ws.sy[s], ws.sz[s]}};
+    return {makeBoxRay(makeSlabRay(ws.ox[s], ws.oy[s], ws.oz[s], ws.rdx[s], ws.rdy[s], ws.rdz[s])), slotWoop(ws, s)};
 }
 
 template <int N, bool AnyHit, class Leaves>
@@ -427,7 +431,7 @@ inline void traceListSingly(const SceneView<N>& scene, const Leaves& leaves, con
         bool occluded;
         if (e.ref.isLeaf()) {
             SingleRayState state;  // the triangle test needs no more than this part
-            state.woop = {ws.ox[s], ws.oy[s], ws.oz[s], ws.kx[s], ws.ky[s], ws.kz[s], ws.sx[s], ws.sy[s], ws.sz[s]};
+            state.woop = slotWoop(ws, s);
             occluded = leaves.template single<kBlockSize, AnyHit>(e.ref, state, ray, hit, cost);
         } else {
             occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(scene, e.ref, ray, slotState(ws, s),
