@@ -17,9 +17,9 @@ inline Bounds3f meshBounds(const TriangleMesh& mesh) {
     return b;
 }
 
-/// Half of the rays start anywhere in the (enlarged) bounds in a uniform direction; the other half
-/// aim at a random point of a random triangle, so that most of them hit.
-inline std::vector<Ray> randomRays(const TriangleMesh& mesh, size_t count, uint32_t seed) {
+/// Rays from anywhere in the (enlarged) bounds: half in a uniform direction, the other half aimed at a
+/// random point of a random triangle, so that most of them hit; with `aimedOnly` all are aimed.
+inline std::vector<Ray> randomRays(const TriangleMesh& mesh, size_t count, uint32_t seed, bool aimedOnly = false) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     Bounds3f b = meshBounds(mesh);
@@ -28,7 +28,7 @@ inline std::vector<Ray> randomRays(const TriangleMesh& mesh, size_t count, uint3
     for (size_t i = 0; i < count; ++i) {
         glm::vec3 o = lo + glm::vec3(unit(rng), unit(rng), unit(rng)) * size;
         glm::vec3 d;
-        if (i % 2 == 0) {
+        if (!aimedOnly && i % 2 == 0) {
             float z = 1.0f - 2.0f * unit(rng), phi = 6.2831853f * unit(rng), r = std::sqrt(std::max(0.0f, 1 - z * z));
             d = {r * std::cos(phi), r * std::sin(phi), z};
         } else {

@@ -21,11 +21,12 @@ struct LeafBox {
 /// Each sub-packet through tracePacket: rays that spread too far for interval culling.
 template <int N, int K, bool AnyHit, class Leaves>
 inline void traceSubPackets(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut,
-                            TraversalCost* costsOut) {
+                            TraversalCost* costsOut, IncoherentPackets* history) {
     for (int first = 0; first < count; first += K) {
         const int n = count - first < K ? count - first : K;
         tracePacket<N, K, AnyHit, Leaves>(scene, rays + first, n, AnyHit ? nullptr : hitsOut + first,
-                                          AnyHit ? occludedOut + first : nullptr, costsOut ? costsOut + first : nullptr);
+                                          AnyHit ? occludedOut + first : nullptr, costsOut ? costsOut + first : nullptr,
+                                          history);
     }
 }
 
@@ -105,16 +106,16 @@ constexpr int kLargePacketLeafBudget = 64;
 /// `Counting` (an inner node tested for the packet counts for each of its unfinished rays).
 template <int N, int K, int P, bool AnyHit, bool Counting, class Leaves>
 inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
-                                    uint8_t* occludedOut, TraversalCost* costsOut) {
+                                    uint8_t* occludedOut, TraversalCost* costsOut, IncoherentPackets* history) {
     using F = vfloat<K>;
     const Leaves leaves{scene.leaves};
     LargePacket<K, P, Counting> lp;
     const bool oneOctant = lp.load(rays, count);
     if (!oneOctant || scene.root.isLeaf())
-        return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
+        return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut, history);
     if (lp.anyValid) {
         const RayInterval iv = lp.interval();
-        if (!narrowEnough(iv)) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut);
+        if (!narrowEnough(iv)) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut, history);
         struct Entry {
             NodeRef ref;
             float distance;  ///< where the packet's interval enters the subtree's box
@@ -154,7 +155,7 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
                 for (uint64_t bits = lp.anyValid; bits; bits &= bits - 1) {
                     const int s = __builtin_ctzll(bits);
                     traversePacket<N, K, AnyHit, Leaves>(scene, rays + s * K, lp.packets[s], lp.hits[s],
-                                                         lp.users[s], lp.done[s], lp.costs[s]);
+                                                         lp.users[s], lp.done[s], false, lp.costs[s]);
                 }
                 break;
             }
@@ -179,14 +180,16 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
     lp.template write<AnyHit>(count, hitsOut, occludedOut, costsOut);
 }
 
-/// Closest hits (or occlusion) of up to K * P rays, and their costs where `costsOut` is given.
+/// Closest hits (or occlusion) of up to K * P rays, and their costs where `costsOut` is given;
+/// `history` as tracePacket's, for the packets traced as K-wide ones.
 template <int N, int K, int P, bool AnyHit, class Leaves = SceneLeafIntersector<N>>
 inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
-                             uint8_t* occludedOut, TraversalCost* costsOut = nullptr) {
+                             uint8_t* occludedOut, TraversalCost* costsOut = nullptr,
+                             IncoherentPackets* history = nullptr) {
     if (costsOut)
         return traceLargePacketCounted<N, K, P, AnyHit, true, Leaves>(scene, rays, count, hitsOut, occludedOut,
-                                                                      costsOut);
-    traceLargePacketCounted<N, K, P, AnyHit, false, Leaves>(scene, rays, count, hitsOut, occludedOut, nullptr);
+                                                                      costsOut, history);
+    traceLargePacketCounted<N, K, P, AnyHit, false, Leaves>(scene, rays, count, hitsOut, occludedOut, nullptr, history);
 }
 
 } // namespace WIDERAY_ISA
