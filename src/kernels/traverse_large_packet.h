@@ -115,7 +115,8 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
         return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut, history);
     if (lp.anyValid) {
         const RayInterval iv = lp.interval();
-        if (!narrowEnough(iv)) return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut, history);
+        if (!narrowEnough(iv))
+            return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut, history);
         struct Entry {
             NodeRef ref;
             float distance;  ///< where the packet's interval enters the subtree's box

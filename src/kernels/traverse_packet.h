@@ -258,16 +258,18 @@ inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int c
     vbool<K> done = andNot(vbool<K>(true), valid);
     const bool partSingly = !history || history->partSingly();
     const bool incoherent = traversePacket<N, K, AnyHit, Leaves>(scene, rays, p, h, user, done, partSingly, cost);
-    if (!AnyHit && history && incoherent)
-        history->add(__builtin_popcount(movemask(valid)), __builtin_popcount(movemask(valid & (h.t < F(__builtin_huge_valf())))));
+    if (!AnyHit && history && incoherent) {
+        const vbool<K> hit = valid & (h.t < F(__builtin_huge_valf()));
+        history->add(__builtin_popcount(movemask(valid)), __builtin_popcount(movemask(hit)));
+    }
     writePacketResults<K, AnyHit>(h, user, movemask(valid), movemask(h.t == F(-__builtin_huge_valf())), count,
                                   hitsOut, occludedOut);
     cost.write(count, costsOut);
 }
 
 /// Closest hits (or occlusion) of up to K rays, and their costs where `costsOut` is given. `history`:
-/// the incoherent packets traced before in the same batch, which decide partSingly (without one,
-/// incoherent packets part singly).
+/// the incoherent packets traced before in the same batch, which decide partSingly (closest hit;
+/// without one, incoherent packets part singly).
 template <int N, int K, bool AnyHit, class Leaves = SceneLeafIntersector<N>>
 inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut,
                         TraversalCost* costsOut = nullptr, IncoherentPackets* history = nullptr) {
