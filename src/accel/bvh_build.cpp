@@ -129,6 +129,7 @@ private:
     /// Builds the subtree at nodes_[nodeIndex]; returns the number of references in its leaves (kept
     /// in refsBelow_ where spare capacity will leave gaps for gatherLeaves to close).
     uint32_t buildNode(uint32_t nodeIndex, const BuildRange& range, int depth) {
+        if (range.size() < kParallelThreshold) return buildLocally(nodeIndex, range, depth);
         BinaryNode& node = *new (&nodes_[nodeIndex]) BinaryNode;
         node.bounds = range.bounds.bounds();
         BuildRange left, right;
@@ -140,18 +141,66 @@ private:
             shareSpare(range, left, right);
             const uint32_t child = nodeCount_.fetch_add(2);
             node.first = child;
-            node.count = 0;
             uint32_t leftRefs, rightRefs;
-            if (range.size() >= kParallelThreshold)
-                tbb::parallel_invoke([&] { leftRefs = buildNode(child, left, depth + 1); },
-                                     [&] { rightRefs = buildNode(child + 1, right, depth + 1); });
-            else {
-                leftRefs = buildNode(child, left, depth + 1);
-                rightRefs = buildNode(child + 1, right, depth + 1);
-            }
+            tbb::parallel_invoke([&] { leftRefs = buildNode(child, left, depth + 1); },
+                                 [&] { rightRefs = buildNode(child + 1, right, depth + 1); });
             refs = leftRefs + rightRefs;
         }
         if (!refsBelow_.empty()) refsBelow_[nodeIndex] = refs;
+        return refs;
+    }
+
+    /// A subtree small enough for one thread, built in that thread's own array and then copied into
+    /// nodes_ with one draw on the shared counter. Drawing each pair of children from the counter
+    /// made two threads pass its cache line back and forth, and write nodes onto each other's cache
+    /// lines, for every node (the kitchen's fast build on two threads 168-176 -> 146-152 ms).
+    struct LocalSubtree {
+        std::vector<BinaryNode> nodes;  ///< [0]: the subtree's root; children after their parents
+        std::vector<uint32_t> refsBelow;
+        bool inUse = false;
+    };
+
+    uint32_t buildLocally(uint32_t nodeIndex, const BuildRange& range, int depth) {
+        // Kept by each thread, so that its memory is allocated once (a small subtree runs no tasks,
+        // so nothing else on the thread uses it meanwhile; should one, it gets an array of its own).
+        thread_local LocalSubtree kept;
+        LocalSubtree fresh;
+        LocalSubtree& local = kept.inUse ? fresh : kept;
+        local.inUse = true;
+        local.nodes.resize(1);
+        local.refsBelow.resize(1);
+        const uint32_t refs = buildLocalNode(local, 0, range, depth);
+        const uint32_t descendants = uint32_t(local.nodes.size()) - 1;
+        const uint32_t base = descendants > 0 ? nodeCount_.fetch_add(descendants) - 1 : 0;  // local i >= 1 -> base + i
+        for (uint32_t i = 0; i <= descendants; ++i) {
+            BinaryNode node = local.nodes[i];
+            if (!node.isLeaf()) node.first += base;
+            const uint32_t to = i == 0 ? nodeIndex : base + i;
+            new (&nodes_[to]) BinaryNode(node);
+            if (!refsBelow_.empty()) refsBelow_[to] = local.refsBelow[i];
+        }
+        local.inUse = false;
+        return refs;
+    }
+
+    uint32_t buildLocalNode(LocalSubtree& local, uint32_t index, const BuildRange& range, int depth) {
+        BinaryNode node;
+        node.bounds = range.bounds.bounds();
+        BuildRange left, right;
+        uint32_t refs = range.size();
+        if (!split(range, depth, left, right)) {
+            node.first = range.begin;
+            node.count = range.size();
+        } else {
+            shareSpare(range, left, right);
+            node.first = uint32_t(local.nodes.size());
+            local.nodes.resize(node.first + 2);
+            local.refsBelow.resize(node.first + 2);
+            refs = buildLocalNode(local, node.first, left, depth + 1);
+            refs += buildLocalNode(local, node.first + 1, right, depth + 1);
+        }
+        local.nodes[index] = node;
+        local.refsBelow[index] = refs;
         return refs;
     }
 
