@@ -153,7 +153,8 @@ private:
     /// A subtree small enough for one thread, built in that thread's own array and then copied into
     /// nodes_ with one draw on the shared counter. Drawing each pair of children from the counter
     /// made two threads pass its cache line back and forth, and write nodes onto each other's cache
-    /// lines, for every node (the kitchen's fast build on two threads 168-176 -> 146-152 ms).
+    /// lines, for every node (two threads, alternated: the kitchen's fast build 174-194 -> 157-174 ms,
+    /// its high build 278-299 -> 267-281 ms).
     struct LocalSubtree {
         std::vector<BinaryNode> nodes;  ///< [0]: the subtree's root; children after their parents
         std::vector<uint32_t> refsBelow;
