@@ -168,6 +168,10 @@ private:
         LocalSubtree fresh;
         LocalSubtree& local = kept.inUse ? fresh : kept;
         local.inUse = true;
+        struct Release {
+            LocalSubtree& local;
+            ~Release() { local.inUse = false; }  // also where the build throws (bad_alloc)
+        } release{local};
         local.nodes.resize(1);
         local.refsBelow.resize(1);
         const uint32_t refs = buildLocalNode(local, 0, range, depth);
@@ -180,7 +184,6 @@ private:
             new (&nodes_[to]) BinaryNode(node);
             if (!refsBelow_.empty()) refsBelow_[to] = local.refsBelow[i];
         }
-        local.inUse = false;
         return refs;
     }
 
