@@ -131,14 +131,9 @@ private:
     uint32_t buildNode(uint32_t nodeIndex, const BuildRange& range, int depth) {
         if (range.size() < kParallelThreshold) return buildLocally(nodeIndex, range, depth);
         BinaryNode& node = *new (&nodes_[nodeIndex]) BinaryNode;
-        node.bounds = range.bounds.bounds();
         BuildRange left, right;
         uint32_t refs = range.size();
-        if (!split(range, depth, left, right)) {
-            node.first = range.begin;
-            node.count = range.size();
-        } else {
-            shareSpare(range, left, right);
+        if (makeNode(range, depth, node, left, right)) {
             const uint32_t child = nodeCount_.fetch_add(2);
             node.first = child;
             uint32_t leftRefs, rightRefs;
@@ -148,6 +143,19 @@ private:
         }
         if (!refsBelow_.empty()) refsBelow_[nodeIndex] = refs;
         return refs;
+    }
+
+    /// Makes `node` over `range` a leaf (returns false), or splits the range into `left` and `right`
+    /// with the spare capacity shared between them; the caller places the children (node.first).
+    bool makeNode(const BuildRange& range, int depth, BinaryNode& node, BuildRange& left, BuildRange& right) {
+        node.bounds = range.bounds.bounds();
+        if (!split(range, depth, left, right)) {
+            node.first = range.begin;
+            node.count = range.size();
+            return false;
+        }
+        shareSpare(range, left, right);
+        return true;
     }
 
     /// A subtree small enough for one thread, built in that thread's own array and then copied into
@@ -173,7 +181,7 @@ private:
             ~Release() { local.inUse = false; }  // also where the build throws (bad_alloc)
         } release{local};
         local.nodes.resize(1);
-        local.refsBelow.resize(1);
+        local.refsBelow.resize(refsBelow_.empty() ? 0 : 1);
         const uint32_t refs = buildLocalNode(local, 0, range, depth);
         const uint32_t descendants = uint32_t(local.nodes.size()) - 1;
         const uint32_t base = descendants > 0 ? nodeCount_.fetch_add(descendants) - 1 : 0;  // local i >= 1 -> base + i
@@ -187,24 +195,21 @@ private:
         return refs;
     }
 
+    /// buildNode within a local subtree: children take the next pair of local.nodes. refsBelow is
+    /// kept only where the build keeps refsBelow_ (spare capacity).
     uint32_t buildLocalNode(LocalSubtree& local, uint32_t index, const BuildRange& range, int depth) {
         BinaryNode node;
-        node.bounds = range.bounds.bounds();
         BuildRange left, right;
         uint32_t refs = range.size();
-        if (!split(range, depth, left, right)) {
-            node.first = range.begin;
-            node.count = range.size();
-        } else {
-            shareSpare(range, left, right);
+        if (makeNode(range, depth, node, left, right)) {
             node.first = uint32_t(local.nodes.size());
             local.nodes.resize(node.first + 2);
-            local.refsBelow.resize(node.first + 2);
+            if (!refsBelow_.empty()) local.refsBelow.resize(node.first + 2);
             refs = buildLocalNode(local, node.first, left, depth + 1);
             refs += buildLocalNode(local, node.first + 1, right, depth + 1);
         }
         local.nodes[index] = node;
-        local.refsBelow[index] = refs;
+        if (!refsBelow_.empty()) local.refsBelow[index] = refs;
         return refs;
     }
 
