@@ -18,7 +18,8 @@ from collections import OrderedDict
 from xml.sax.saxutils import escape
 
 RAY_KINDS = ("primary", "shadow", "diffuse", "bounce")
-OUR_KERNELS = ("scalar", "single", "packet4", "packet8", "packet16", "packet256", "stream", "drst", "single+cache")
+OUR_KERNELS = ("scalar", "single", "packet4", "packet8", "packet16", "packet256", "stream", "drst", "single+cache",
+               "packet4+cache", "packet8+cache", "packet16+cache", "packet256+cache")
 ANALYSIS_FILE = "performance-analysis.md"
 
 
@@ -52,8 +53,10 @@ def merge(out_path, in_paths):
 
 def embree_counterpart(our_kernel, ray_kind):
     """The Embree entry point `wideray bench` compares one of our kernels with."""
-    # packet256 has no Embree counterpart of its size: it is compared with Embree's widest packet.
-    name = {"scalar": "rtcIntersect1", "single": "rtcIntersect1", "single+cache": "rtcIntersect1",
+    # packet256 has no Embree counterpart of its size: it is compared with Embree's widest packet. A
+    # kernel with the shadow cache (+cache) is compared with the entry point of the kernel without it.
+    our_kernel = our_kernel.removesuffix("+cache")
+    name = {"scalar": "rtcIntersect1", "single": "rtcIntersect1",
             "packet256": "rtcIntersect16", "stream": "rtcIntersect1M", "drst": "rtcIntersect1M"}.get(our_kernel)
     if name is None and our_kernel.startswith("packet"):
         name = "rtcIntersect" + our_kernel[len("packet"):]
@@ -249,7 +252,7 @@ def work_section(bench, table):
              "per ray: inner nodes whose children were box-tested, leaves entered, triangle slots tested (a "
              "4-triangle block counts 4), for the build each kernel was fastest on. Packet kernels count a node "
              "for every ray active when the packet visits it; packet256 counts interval tests of inner nodes for "
-             "every unfinished ray of the 256. Shadow rays stop at the first occluder; `single+cache` is not counted."]
+             "every unfinished ray of the 256. Shadow rays stop at the first occluder; the kernels with the shadow cache (`+cache`) are not counted."]
     for scene in scenes_in_order(bench["results"]):
         header = ["ours"]
         for kind in RAY_KINDS:

@@ -71,6 +71,7 @@ std::unique_ptr<Tracer> WideBvhStructure<N>::tracer(const KernelChoice& choice) 
             if (!widest && table.find(name)->available()) widest = table.find(name);
         coherent = *table.find("packet256");
         coherent.occluded = widest->occluded;
+        coherent.occludedCached = widest->occludedCached;
         coherentName = std::string("packet256+") + widest->name;
         // Incoherent batches (a bounce of a tile's paths) go to streams, which beat single rays on
         // them (bench's diffuse and bounce rays, docs/performance.md).

@@ -15,14 +15,14 @@ namespace wideray {
 template <int N>
 class WiderayTracer final : public Tracer {
 public:
-    /// With `shadowCache`, incoherent shadow rays that name their depth go through the kernel's
-    /// last-occluder cache (one per worker thread and depth), where the kernel has one. `owner`
-    /// keeps the structure that `accel` belongs to alive.
+    /// With `shadowCache`, shadow rays that name their depth go through their kernel's last-occluder
+    /// cache (one per worker thread and depth), where the kernel has one. `owner` keeps the structure
+    /// that `accel` belongs to alive.
     WiderayTracer(std::shared_ptr<const void> owner, const SceneAccel<N>& accel, Kernel<N> coherent,
                   Kernel<N> incoherent, std::string name, bool shadowCache)
         : owner_(std::move(owner)), accel_(accel), view_(accel.view()), coherent_(coherent), incoherent_(incoherent),
           name_(std::move(name)),
-          caches_(shadowCache && incoherent.occludedCached
+          caches_(shadowCache && (coherent.occludedCached || incoherent.occludedCached)
                       ? size_t(tbb::this_task_arena::max_concurrency()) * kCachedDepths
                       : 0) {}
 
@@ -32,14 +32,15 @@ public:
     }
     void occluded(std::span<const Ray> rays, std::span<uint8_t> occluded, Coherence coherence,
                   int depth = -1) const override {
+        const Kernel<N>& k = kernel(coherence);
         int thread = tbb::this_task_arena::current_thread_index();
-        if (coherence == Coherence::Incoherent && depth >= 0 && depth < kCachedDepths && !caches_.empty() &&
-            thread >= 0 && size_t(thread) * kCachedDepths < caches_.size()) {
+        if (k.occludedCached && depth >= 0 && depth < kCachedDepths && !caches_.empty() && thread >= 0 &&
+            size_t(thread) * kCachedDepths < caches_.size()) {
             ShadowCache& cache = caches_[size_t(thread) * kCachedDepths + size_t(depth)];
-            incoherent_.occludedCached(view_, rays.data(), occluded.data(), rays.size(), cache);
+            k.occludedCached(view_, rays.data(), occluded.data(), rays.size(), cache);
             return;
         }
-        kernel(coherence).occluded(view_, rays.data(), occluded.data(), rays.size(), nullptr);
+        k.occluded(view_, rays.data(), occluded.data(), rays.size(), nullptr);
     }
 
     const SceneGeometry& geometry() const override { return accel_.geometry(); }

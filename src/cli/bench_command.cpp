@@ -64,6 +64,7 @@ struct Candidate {
     std::string counterpart;  ///< the Embree kernel ours is compared with
     TraceFn trace;
     bool countsWork = false;  ///< whether `trace` fills costs
+    bool shadowOnly = false;  ///< traces shadow rays alone (the kernels with the shadow cache)
 };
 
 /// The whole ray set through a candidate, in tasks of kChunk rays.
@@ -159,7 +160,8 @@ std::vector<Candidate> ourCandidates(const SceneAccel<N>& accel, const std::stri
                                    if (h) return;
                                    ShadowCache cache;
                                    k.occludedCached(view, r, o, n, cache);
-                               }});
+                               },
+                               false, true});
         }
     }
     return out;
@@ -321,7 +323,7 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
         std::map<std::string, std::pair<double, std::string>> embreeBest;  // kernel -> (Mrays/s, quality)
         std::vector<const Candidate*> timed;
         for (const Candidate& c : candidates)
-            if (anyHit || c.kernel != "single+cache") timed.push_back(&c);  // the cache is for shadow rays only
+            if (anyHit || !c.shadowOnly) timed.push_back(&c);
         const std::vector<Measurement> times = measureAll(timed, set, anyHit, coherent, args.runs, name + " " + kindName);
         std::vector<std::pair<const Candidate*, Measurement>> measured;
         for (size_t i = 0; i < timed.size(); ++i) {

@@ -31,8 +31,9 @@ void addEngineOptions(CLI::App& app, EngineOptions& options) {
         ->check(CLI::IsMember({"sse42", "avx2", "avx512", "auto"}))
         ->capture_default_str();
     app.add_option("--shadow-cache", options.shadowCache,
-                   "Last-occluder cache per thread and recursion depth for incoherent shadow rays, where the kernel "
-                   "has one (--kernel single; auto traces them as streams, which are faster): on or off (see "
+                   "Last-occluder cache per thread and recursion depth for shadow rays, where the kernel has one "
+                   "(single and the packets; auto's shadow rays of camera hits go through 16-wide packets with it, "
+                   "its incoherent ones as streams, which are faster): on or off (see "
                    "docs/performance-analysis.md for what it saves)")
         ->check(CLI::IsMember({"on", "off"}))
         ->capture_default_str();

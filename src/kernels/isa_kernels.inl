@@ -88,6 +88,14 @@ void packetOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occlude
                                 costs ? costs + i : nullptr);
 }
 
+template <int N, int K>
+void packetOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count,
+                          ShadowCache& cache) {
+    for (size_t i = 0; i < count; i += K)
+        tracePacket<N, K, true>(scene, rays + i, int(count - i < K ? count - i : K), nullptr, occluded + i, nullptr,
+                                nullptr, &cache);
+}
+
 /// Packets of 256 rays (a 16x16 tile in Morton order), sub-packets as wide as the ISA allows.
 template <int N>
 void largePacketIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
@@ -105,6 +113,15 @@ void largePacketOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* oc
     for (size_t i = 0; i < count; i += K * P)
         traceLargePacket<N, K, P, true>(scene, rays + i, int(count - i < K * P ? count - i : K * P), nullptr,
                                         occluded + i, costs ? costs + i : nullptr);
+}
+
+template <int N>
+void largePacketOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count,
+                               ShadowCache& cache) {
+    constexpr int K = kMaxWidth, P = 256 / K;
+    for (size_t i = 0; i < count; i += K * P)
+        traceLargePacket<N, K, P, true>(scene, rays + i, int(count - i < K * P ? count - i : K * P), nullptr,
+                                        occluded + i, nullptr, nullptr, &cache);
 }
 
 /// Streams of up to kStreamSize rays, SIMD across the widest vector of the ISA.
@@ -133,6 +150,7 @@ Kernel<N> packetKernel(const char* name, const char* description, const char* co
     if constexpr (K <= kMaxWidth) {
         k.intersect = &packetIntersect<N, K>;
         k.occluded = &packetOccluded<N, K>;
+        k.occludedCached = &packetOccludedCached<N, K>;
     }
     return k;
 }
@@ -149,7 +167,7 @@ KernelTable<N> makeTable() {
         packetKernel<N, 8>("packet8", "8 rays (4x2 pixels) walk the tree together", "rtcIntersect8", Isa::Avx2),
         packetKernel<N, 16>("packet16", "16 rays (4x4 pixels) walk the tree together", "rtcIntersect16", Isa::Avx512),
         {"packet256", "256 rays (16x16 pixels): inner nodes tested once by interval arithmetic, leaves per sub-packet",
-         "rtcIntersect16", Isa::Sse42, &largePacketIntersect<N>, &largePacketOccluded<N>},
+         "rtcIntersect16", Isa::Sse42, &largePacketIntersect<N>, &largePacketOccluded<N>, &largePacketOccludedCached<N>},
         {"stream", "sorted streams of up to 4096 rays, filtered node by node into one list per child",
          "rtcIntersect1M", Isa::Sse42, &streamIntersect<N, StreamOrder::ByList>, &streamOccluded<N, StreamOrder::ByList>},
         {"drst", "sorted streams in which each ray visits its children in its own order (Dynamic Ray Stream Traversal)",

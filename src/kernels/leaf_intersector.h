@@ -15,6 +15,7 @@ inline namespace WIDERAY_ISA {
 template <int N>
 struct SceneLeafIntersector {
     SceneLeaves leaves;
+    uint32_t* lastOccluder = nullptr;  ///< where given, any-hit packets write the block that last occluded one of their rays
 
     /// One ray; closest-hit updates `hit`, any-hit returns true when the leaf occludes the ray.
     /// TriW = 1 tests a block's triangles one by one (the reference), kBlockSize all at once.
@@ -48,6 +49,7 @@ struct SceneLeafIntersector {
             cost.test(movemask(active), kBlockSize);
             const vbool<K> hit = intersectBlockPacket<K, AnyHit>(leaves.blocks[b], p, active, h);
             if constexpr (AnyHit) {
+                if (lastOccluder && any(hit)) *lastOccluder = b;
                 occluded |= hit;
                 h.t = select(hit, vfloat<K>(-__builtin_huge_valf()), h.t);
                 active = andNot(active, hit);

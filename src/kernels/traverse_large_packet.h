@@ -21,12 +21,12 @@ struct LeafBox {
 /// Each sub-packet through tracePacket: rays that spread too far for interval culling.
 template <int N, int K, bool AnyHit, class Leaves>
 inline void traceSubPackets(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut,
-                            TraversalCost* costsOut, IncoherentPackets* history) {
+                            TraversalCost* costsOut, IncoherentPackets* history, ShadowCache* cache) {
     for (int first = 0; first < count; first += K) {
         const int n = count - first < K ? count - first : K;
         tracePacket<N, K, AnyHit, Leaves>(scene, rays + first, n, AnyHit ? nullptr : hitsOut + first,
                                           AnyHit ? occludedOut + first : nullptr, costsOut ? costsOut + first : nullptr,
-                                          history);
+                                          history, cache);
     }
 }
 
@@ -102,21 +102,31 @@ struct LargePacket {
 /// 2.16 -> 1.90 (Sponza).
 constexpr int kLargePacketLeafBudget = 64;
 
-/// Closest hits (or occlusion) of up to K * P rays, P sub-packets of K, and their costs with
-/// `Counting` (an inner node tested for the packet counts for each of its unfinished rays).
+/// Closest hits (or occlusion, through `cache` where given) of up to K * P rays, P sub-packets of K,
+/// and their costs with `Counting` (an inner node tested for the packet counts for each of its
+/// unfinished rays).
 template <int N, int K, int P, bool AnyHit, bool Counting, class Leaves>
 inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
-                                    uint8_t* occludedOut, TraversalCost* costsOut, IncoherentPackets* history) {
+                                    uint8_t* occludedOut, TraversalCost* costsOut, IncoherentPackets* history,
+                                    ShadowCache* cache) {
     using F = vfloat<K>;
-    const Leaves leaves{scene.leaves};
+    uint32_t* lastOccluder = cache ? &cache->block : nullptr;
+    const Leaves leaves{scene.leaves, lastOccluder};
     LargePacket<K, P, Counting> lp;
     const bool oneOctant = lp.load(rays, count);
     if (!oneOctant || scene.root.isLeaf())
-        return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut, history);
+        return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut, history, cache);
     if (lp.anyValid) {
         const RayInterval iv = lp.interval();
         if (!narrowEnough(iv))
-            return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut, history);
+            return traceSubPackets<N, K, AnyHit, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut, history,
+                                                         cache);
+        if (AnyHit && cache)
+            for (uint64_t bits = lp.anyValid; bits; bits &= bits - 1) {
+                const int s = __builtin_ctzll(bits);
+                occludeByCache(scene.leaves, *cache, lp.packets[s], lp.hits[s], lp.done[s]);
+                if (all(lp.done[s])) lp.anyValid &= ~(uint64_t(1) << s);
+            }
         struct Entry {
             NodeRef ref;
             float distance;  ///< where the packet's interval enters the subtree's box
@@ -125,7 +135,7 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
         Entry stack[kStackSize<N>];
         int sp = 0;
         int leavesEntered = 0;
-        stack[sp++] = {scene.root, iv.tnear, {}};
+        if (lp.anyValid) stack[sp++] = {scene.root, iv.tnear, {}};
         float tfarMax = lp.tfarMax();
         while (sp > 0) {
             Entry e = stack[--sp];
@@ -156,7 +166,7 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
                 for (uint64_t bits = lp.anyValid; bits; bits &= bits - 1) {
                     const int s = __builtin_ctzll(bits);
                     traversePacket<N, K, AnyHit, Leaves>(scene, rays + s * K, lp.packets[s], lp.hits[s],
-                                                         lp.users[s], lp.done[s], false, lp.costs[s]);
+                                                         lp.users[s], lp.done[s], false, lp.costs[s], lastOccluder);
                 }
                 break;
             }
@@ -182,15 +192,17 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
 }
 
 /// Closest hits (or occlusion) of up to K * P rays, and their costs where `costsOut` is given;
-/// `history` as tracePacket's, for the packets traced as K-wide ones.
+/// `history` as tracePacket's, for the packets traced as K-wide ones; `cache`: any-hit's shadow cache,
+/// where given.
 template <int N, int K, int P, bool AnyHit, class Leaves = SceneLeafIntersector<N>>
 inline void traceLargePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
                              uint8_t* occludedOut, TraversalCost* costsOut = nullptr,
-                             IncoherentPackets* history = nullptr) {
+                             IncoherentPackets* history = nullptr, ShadowCache* cache = nullptr) {
     if (costsOut)
         return traceLargePacketCounted<N, K, P, AnyHit, true, Leaves>(scene, rays, count, hitsOut, occludedOut,
-                                                                      costsOut, history);
-    traceLargePacketCounted<N, K, P, AnyHit, false, Leaves>(scene, rays, count, hitsOut, occludedOut, nullptr, history);
+                                                                      costsOut, history, cache);
+    traceLargePacketCounted<N, K, P, AnyHit, false, Leaves>(scene, rays, count, hitsOut, occludedOut, nullptr, history,
+                                                            cache);
 }
 
 } // namespace WIDERAY_ISA

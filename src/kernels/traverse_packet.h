@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "kernels/ray_interval.h"
+#include "kernels/shadow_cache.h"
 #include "kernels/traverse_single.h"
 
 #include "simd/isa_namespace.h"
@@ -104,15 +105,16 @@ inline void writePacketResults(const PacketHit<K>& h, const UserHits& user, uint
 /// or occluded). A packet that already found hits culls by them and ends with the reference's
 /// answer all the same. At most K / 4 active rays finish a subtree one by one, and with `partSingly`
 /// the rays of an incoherent packet (closest hit) from the first node where they part. Returns
-/// whether the packet was incoherent (too spread for interval culling). Inlined, so that the
-/// packet's hits stay in registers.
+/// whether the packet was incoherent (too spread for interval culling). Any-hit packets write the
+/// block that last occluded one of their rays at a leaf to `lastOccluder`, where given. Inlined, so
+/// that the packet's hits stay in registers.
 template <int N, int K, bool AnyHit, class Leaves, class Cost>
 [[gnu::always_inline]] inline bool traversePacket(const SceneView<N>& scene, const Ray* rays, const PacketRay<K>& p,
                                                   PacketHit<K>& h, PacketUserHits<K>& user, vbool<K>& done,
-                                                  bool partSingly, Cost& cost) {
+                                                  bool partSingly, Cost& cost, uint32_t* lastOccluder = nullptr) {
     using F = vfloat<K>;
     constexpr int switchToSingle = K / 4;
-    const Leaves leaves{scene.leaves};
+    const Leaves leaves{scene.leaves, lastOccluder};
     const F inf(__builtin_huge_valf());
     const vbool<K> valid = andNot(vbool<K>(true), done);
 
@@ -245,10 +247,26 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
     return !byInterval;
 }
 
-/// Closest hits (or occlusion) of up to K rays, and their costs with `Counting`.
+/// Any-hit with a shadow cache: the lanes that the cached block occludes are done before the
+/// traversal, which then caches the block that last occluded one of its rays at a leaf.
+template <int K>
+[[gnu::always_inline]] inline void occludeByCache(const SceneLeaves& leaves, ShadowCache& cache, const PacketRay<K>& p,
+                                                  PacketHit<K>& h, vbool<K>& done) {
+    const vbool<K> valid = andNot(vbool<K>(true), done);
+    cache.queries += uint32_t(__builtin_popcount(movemask(valid)));
+    if (cache.block == kInvalidId || none(valid)) return;
+    const vbool<K> occluded = intersectBlockPacket<K, true>(leaves.blocks[cache.block], p, valid, h);
+    cache.hits += uint32_t(__builtin_popcount(movemask(occluded)));
+    h.t = select(occluded, vfloat<K>(-__builtin_huge_valf()), h.t);
+    done |= occluded;
+}
+
+/// Closest hits (or occlusion, through `cache` where given) of up to K rays, and their costs with
+/// `Counting`.
 template <int N, int K, bool AnyHit, bool Counting, class Leaves>
 inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut,
-                               uint8_t* occludedOut, TraversalCost* costsOut, IncoherentPackets* history) {
+                               uint8_t* occludedOut, TraversalCost* costsOut, IncoherentPackets* history,
+                               ShadowCache* cache = nullptr) {
     using F = vfloat<K>;
     PacketRay<K> p;
     PacketHit<K> h;
@@ -257,7 +275,9 @@ inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int c
     const vbool<K> valid = loadPacket(rays, count, p, h);
     vbool<K> done = andNot(vbool<K>(true), valid);
     const bool partSingly = !history || history->partSingly();
-    const bool incoherent = traversePacket<N, K, AnyHit, Leaves>(scene, rays, p, h, user, done, partSingly, cost);
+    if (AnyHit && cache) occludeByCache(scene.leaves, *cache, p, h, done);
+    const bool incoherent = traversePacket<N, K, AnyHit, Leaves>(scene, rays, p, h, user, done, partSingly, cost,
+                                                                 cache ? &cache->block : nullptr);
     if (!AnyHit && history && incoherent) {
         const vbool<K> hit = valid & (h.t < F(__builtin_huge_valf()));
         history->add(__builtin_popcount(movemask(valid)), __builtin_popcount(movemask(hit)));
@@ -269,13 +289,15 @@ inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int c
 
 /// Closest hits (or occlusion) of up to K rays, and their costs where `costsOut` is given. `history`:
 /// the incoherent packets traced before in the same batch, which decide partSingly (closest hit;
-/// without one, incoherent packets part singly).
+/// without one, incoherent packets part singly). `cache`: any-hit's shadow cache, where given.
 template <int N, int K, bool AnyHit, class Leaves = SceneLeafIntersector<N>>
 inline void tracePacket(const SceneView<N>& scene, const Ray* rays, int count, Hit* hitsOut, uint8_t* occludedOut,
-                        TraversalCost* costsOut = nullptr, IncoherentPackets* history = nullptr) {
+                        TraversalCost* costsOut = nullptr, IncoherentPackets* history = nullptr,
+                        ShadowCache* cache = nullptr) {
     if (costsOut)
-        return tracePacketCounted<N, K, AnyHit, true, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut, history);
-    tracePacketCounted<N, K, AnyHit, false, Leaves>(scene, rays, count, hitsOut, occludedOut, nullptr, history);
+        return tracePacketCounted<N, K, AnyHit, true, Leaves>(scene, rays, count, hitsOut, occludedOut, costsOut,
+                                                              history, cache);
+    tracePacketCounted<N, K, AnyHit, false, Leaves>(scene, rays, count, hitsOut, occludedOut, nullptr, history, cache);
 }
 
 } // namespace WIDERAY_ISA
