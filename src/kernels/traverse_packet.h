@@ -248,7 +248,10 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
 }
 
 /// Any-hit with a shadow cache: the lanes that the cached block occludes are done before the
-/// traversal, which then caches the block that last occluded one of its rays at a leaf.
+/// traversal, which then caches the block that last occluded one of its rays at a leaf. A block that
+/// occludes none of the packet's rays is dropped, so that where the cache does not pay (rays toward
+/// several lights interleaved, unshadowed regions), packets stop testing it until a leaf occludes
+/// again.
 template <int K>
 [[gnu::always_inline]] inline void occludeByCache(const SceneLeaves& leaves, ShadowCache& cache, const PacketRay<K>& p,
                                                   PacketHit<K>& h, vbool<K>& done) {
@@ -256,6 +259,10 @@ template <int K>
     cache.queries += uint32_t(__builtin_popcount(movemask(valid)));
     if (cache.block == kInvalidId || none(valid)) return;
     const vbool<K> occluded = intersectBlockPacket<K, true>(leaves.blocks[cache.block], p, valid, h);
+    if (none(occluded)) {
+        cache.block = kInvalidId;
+        return;
+    }
     cache.hits += uint32_t(__builtin_popcount(movemask(occluded)));
     h.t = select(occluded, vfloat<K>(-__builtin_huge_valf()), h.t);
     done |= occluded;
