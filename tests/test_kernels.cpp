@@ -234,9 +234,11 @@ TEST(Kernels, ShadowCacheAnswersRepeatedOccluders) {
         ASSERT_LT(blocked, rays.size());
         for (const Kernel<8>& kernel : kernelsOf(kernelTable<8>(isa))) {
             if (!kernel.occludedCached) continue;
+            // In batches of 256 rays, as a renderer's tiles call it, one cache for all.
             ShadowCache cache;
             std::vector<uint8_t> occluded(rays.size(), 7);
-            kernel.occludedCached(accel.view(), rays.data(), occluded.data(), rays.size(), cache);
+            for (size_t first = 0; first < rays.size(); first += 256)
+                kernel.occludedCached(accel.view(), rays.data() + first, occluded.data() + first, 256, cache);
             EXPECT_TRUE(occluded == expected) << kernel.name << " " << isaName(isa);
             EXPECT_EQ(cache.queries, rays.size()) << kernel.name << " " << isaName(isa);
             // Once the quad's block is cached, it answers the rays it blocks (packets drop it where it

@@ -34,12 +34,11 @@ void singleOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occlude
     }
 }
 
-/// Any-hit with the shadow cache: the cached block first, then a traversal that remembers the
-/// block that blocked the ray. The answers are the same as without the cache.
+/// Any-hit with the shadow cache: the cached block first, then a traversal that caches the block
+/// that blocks the ray. The answers are the same as without the cache.
 template <int N>
 void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count,
                           ShadowCache& cache) {
-    const SceneLeaves& leaves = scene.leaves;
     for (size_t i = 0; i < count; ++i) {
         const Ray& ray = rays[i];
         occluded[i] = 0;
@@ -48,27 +47,15 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
         Hit hit;
         hit.t = ray.tfar;
         ++cache.queries;
-        if (cache.block != kInvalidId && intersectBlock<kBlockSize, true>(leaves.blocks[cache.block], s, ray, hit)) {
+        if (cache.block != kInvalidId &&
+            intersectBlock<kBlockSize, true>(scene.leaves.blocks[cache.block], s, ray, hit)) {
             ++cache.hits;
             occluded[i] = 1;
             continue;
         }
-        bool blocked = false;
         TraversalCost cost;
-        // The scene's leaf intersector, but remembering the block that blocked the ray.
-        traverseWide<N, kNodeSimdWidth<N>, false>(
-            scene.nodes, scene.root, s.box, ray.tnear, [&] { return hit.t; },
-            [&](NodeRef leaf) __attribute__((always_inline)) {
-                if (leaf.isUserLeaf()) return blocked = intersectUserLeaf<N, true>(leaves, leaf, ray, hit, cost);
-                for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b)
-                    if (intersectBlock<kBlockSize, true>(leaves.blocks[b], s, ray, hit)) {
-                        cache.block = b;
-                        return blocked = true;
-                    }
-                return false;
-            },
-            cost);
-        occluded[i] = blocked ? 1 : 0;
+        occluded[i] = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, true>(scene, scene.root, ray, s, hit, cost,
+                                                                            &cache.block);
     }
 }
 

@@ -15,7 +15,9 @@ inline namespace WIDERAY_ISA {
 template <int N>
 struct SceneLeafIntersector {
     SceneLeaves leaves;
-    uint32_t* lastOccluder = nullptr;  ///< where given, any-hit packets write the block that last occluded one of their rays
+    /// Where given, any-hit tests write the triangle block that last occluded a ray (the shadow cache's
+    /// block; never one of an instance's mesh, whose traversal has its own intersector).
+    uint32_t* lastOccluder = nullptr;
 
     /// One ray; closest-hit updates `hit`, any-hit returns true when the leaf occludes the ray.
     /// TriW = 1 tests a block's triangles one by one (the reference), kBlockSize all at once.
@@ -26,7 +28,10 @@ struct SceneLeafIntersector {
         if (leaf.isUserLeaf()) return intersectUserLeaf<N, AnyHit>(leaves, leaf, ray, hit, cost);
         for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b) {
             cost.primitives += kBlockSize;
-            if (intersectBlock<TriW, AnyHit>(leaves.blocks[b], s, ray, hit)) return true;
+            if (intersectBlock<TriW, AnyHit>(leaves.blocks[b], s, ray, hit)) {
+                if (lastOccluder) *lastOccluder = b;
+                return true;
+            }
         }
         return false;
     }

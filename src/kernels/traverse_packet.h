@@ -106,8 +106,8 @@ inline void writePacketResults(const PacketHit<K>& h, const UserHits& user, uint
 /// answer all the same. At most K / 4 active rays finish a subtree one by one, and with `partSingly`
 /// the rays of an incoherent packet (closest hit) from the first node where they part. Returns
 /// whether the packet was incoherent (too spread for interval culling). Any-hit packets write the
-/// block that last occluded one of their rays at a leaf to `lastOccluder`, where given. Inlined, so
-/// that the packet's hits stay in registers.
+/// block that last occluded one of their rays to `lastOccluder`, where given. Inlined, so that the
+/// packet's hits stay in registers.
 template <int N, int K, bool AnyHit, class Leaves, class Cost>
 [[gnu::always_inline]] inline bool traversePacket(const SceneView<N>& scene, const Ray* rays, const PacketRay<K>& p,
                                                   PacketHit<K>& h, PacketUserHits<K>& user, vbool<K>& done,
@@ -153,7 +153,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
             Hit hit = laneHit(lanes, user, lane);
             TraversalCost laneCost;
             const bool occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(
-                scene, ref, rays[lane], laneState(p, lane), hit, laneCost);
+                scene, ref, rays[lane], laneState(p, lane), hit, laneCost, lastOccluder);
             cost.add(lane, laneCost);
             if (occluded) {
                 lanes.t[lane] = -__builtin_huge_valf();
@@ -248,7 +248,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
 }
 
 /// Any-hit with a shadow cache: the lanes that the cached block occludes are done before the
-/// traversal, which then caches the block that last occluded one of its rays at a leaf. A block that
+/// traversal, which then caches the block that last occluded one of its rays. A block that
 /// occludes none of the packet's rays is dropped, so that where the cache does not pay (rays toward
 /// several lights interleaved, unshadowed regions), packets stop testing it until a leaf occludes
 /// again.

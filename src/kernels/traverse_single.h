@@ -84,10 +84,11 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
 
 /// Closest hit (AnyHit = false) or occlusion (AnyHit = true, returns whether occluded) of one valid
 /// ray in the subtree at `root`; `hit` holds the ray's closest hit so far (a miss at ray.tfar to begin).
+/// Any-hit writes the block that occludes the ray to `lastOccluder`, where given.
 template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector<N>>
 inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray, const SingleRayState& s, Hit& hit,
-                         TraversalCost& cost) {
-    const Leaves leaves{scene.leaves};
+                         TraversalCost& cost, uint32_t* lastOccluder = nullptr) {
+    const Leaves leaves{scene.leaves, lastOccluder};
     bool occluded = false;
     traverseWide<N, NodeW, !AnyHit>(
         scene.nodes, root, s.box, ray.tnear, [&] { return hit.t; },
