@@ -248,6 +248,27 @@ TEST(Kernels, ShadowCacheAnswersRepeatedOccluders) {
     }
 }
 
+TEST(Kernels, ShadowCacheKeepsTheLatestOccludersFirst) {
+    static_assert(ShadowCache::kBlocks == 2, "the expectations below are for two entries");
+    auto entries = [](const ShadowCache& c) { return std::vector<uint32_t>(c.blocks, c.blocks + ShadowCache::kBlocks); };
+    const uint32_t empty = ShadowCache::kEmpty;
+    ShadowCache cache;
+    cache.remember();  // no traversal found an occluder
+    EXPECT_EQ(entries(cache), (std::vector<uint32_t>{empty, empty}));
+    cache.found = 5, cache.remember();
+    cache.found = 7, cache.remember();
+    EXPECT_EQ(entries(cache), (std::vector<uint32_t>{7, 5}));
+    EXPECT_EQ(cache.found, empty);
+    cache.found = 5, cache.remember();  // already cached: moves first, nothing is lost
+    EXPECT_EQ(entries(cache), (std::vector<uint32_t>{5, 7}));
+    cache.found = 9, cache.remember();  // the oldest goes
+    EXPECT_EQ(entries(cache), (std::vector<uint32_t>{9, 5}));
+    cache.promote(1);
+    EXPECT_EQ(entries(cache), (std::vector<uint32_t>{5, 9}));
+    cache.forget(0);
+    EXPECT_EQ(entries(cache), (std::vector<uint32_t>{9, empty}));
+}
+
 TEST(Kernels, EdgeCases) {
     FlushToZeroScope ftz;
     TriangleMesh mesh = makeIcosphere(3);

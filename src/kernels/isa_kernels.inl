@@ -47,15 +47,20 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
         Hit hit;
         hit.t = ray.tfar;
         ++cache.queries;
-        if (cache.block != kInvalidId &&
-            intersectBlock<kBlockSize, true>(scene.leaves.blocks[cache.block], s, ray, hit)) {
+        int entry = 0;
+        while (entry < ShadowCache::kBlocks && cache.blocks[entry] != ShadowCache::kEmpty &&
+               !intersectBlock<kBlockSize, true>(scene.leaves.blocks[cache.blocks[entry]], s, ray, hit))
+            ++entry;
+        if (entry < ShadowCache::kBlocks && cache.blocks[entry] != ShadowCache::kEmpty) {
             ++cache.hits;
+            cache.promote(entry);
             occluded[i] = 1;
             continue;
         }
         TraversalCost cost;
         occluded[i] = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, true>(scene, scene.root, ray, s, hit, cost,
-                                                                            &cache.block);
+                                                                            &cache.found);
+        cache.remember();
     }
 }
 

@@ -110,7 +110,7 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
                                     uint8_t* occludedOut, TraversalCost* costsOut, IncoherentPackets* history,
                                     ShadowCache* cache) {
     using F = vfloat<K>;
-    uint32_t* lastOccluder = cache ? &cache->block : nullptr;
+    uint32_t* lastOccluder = cache ? &cache->found : nullptr;
     const Leaves leaves{scene.leaves, lastOccluder};
     LargePacket<K, P, Counting> lp;
     const bool oneOctant = lp.load(rays, count);
@@ -188,6 +188,7 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
             tfarMax = lp.tfarMax();
         }
     }
+    if (cache) cache->remember();
     lp.template write<AnyHit>(count, hitsOut, occludedOut, costsOut);
 }
 

@@ -247,25 +247,27 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
     return !byInterval;
 }
 
-/// Any-hit with a shadow cache: the lanes that the cached block occludes are done before the
-/// traversal, which then caches the block that last occluded one of its rays. A block that
-/// occludes none of the packet's rays is dropped, so that where the cache does not pay (rays toward
-/// several lights interleaved, unshadowed regions), packets stop testing it until a leaf occludes
-/// again.
+/// Any-hit with a shadow cache: the lanes that the cached blocks occlude are done before the
+/// traversal (whose occluder the caller then caches). A block that occludes none of the packet's
+/// rays left is dropped, so that where the cache does not pay (rays toward several lights
+/// interleaved, unshadowed regions), packets stop testing it until a traversal finds an occluder.
 template <int K>
 [[gnu::always_inline]] inline void occludeByCache(const SceneLeaves& leaves, ShadowCache& cache, const PacketRay<K>& p,
                                                   PacketHit<K>& h, vbool<K>& done) {
-    const vbool<K> valid = andNot(vbool<K>(true), done);
-    cache.queries += uint32_t(__builtin_popcount(movemask(valid)));
-    if (cache.block == kInvalidId || none(valid)) return;
-    const vbool<K> occluded = intersectBlockPacket<K, true>(leaves.blocks[cache.block], p, valid, h);
-    if (none(occluded)) {
-        cache.block = kInvalidId;
-        return;
+    vbool<K> active = andNot(vbool<K>(true), done);
+    cache.queries += uint32_t(__builtin_popcount(movemask(active)));
+    for (int entry = 0; entry < ShadowCache::kBlocks && cache.blocks[entry] != ShadowCache::kEmpty && any(active);) {
+        const vbool<K> occluded = intersectBlockPacket<K, true>(leaves.blocks[cache.blocks[entry]], p, active, h);
+        if (none(occluded)) {
+            cache.forget(entry);
+            continue;
+        }
+        cache.hits += uint32_t(__builtin_popcount(movemask(occluded)));
+        h.t = select(occluded, vfloat<K>(-__builtin_huge_valf()), h.t);
+        done |= occluded;
+        active = andNot(active, occluded);
+        ++entry;
     }
-    cache.hits += uint32_t(__builtin_popcount(movemask(occluded)));
-    h.t = select(occluded, vfloat<K>(-__builtin_huge_valf()), h.t);
-    done |= occluded;
 }
 
 /// Closest hits (or occlusion, through `cache` where given) of up to K rays, and their costs with
@@ -284,7 +286,8 @@ inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int c
     const bool partSingly = !history || history->partSingly();
     if (AnyHit && cache) occludeByCache(scene.leaves, *cache, p, h, done);
     const bool incoherent = traversePacket<N, K, AnyHit, Leaves>(scene, rays, p, h, user, done, partSingly, cost,
-                                                                 cache ? &cache->block : nullptr);
+                                                                 cache ? &cache->found : nullptr);
+    if (cache) cache->remember();
     if (!AnyHit && history && incoherent) {
         const vbool<K> hit = valid & (h.t < F(__builtin_huge_valf()));
         history->add(__builtin_popcount(movemask(valid)), __builtin_popcount(movemask(hit)));
