@@ -34,8 +34,8 @@ void singleOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occlude
     }
 }
 
-/// Any-hit with the shadow cache: the cached block first, then a traversal that caches the block
-/// that blocks the ray. The answers are the same as without the cache.
+/// Any-hit with the shadow cache: the cached blocks first (the latest occluder first), then a
+/// traversal that caches the block that blocks the ray. The answers are the same as without the cache.
 template <int N>
 void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count,
                           ShadowCache& cache) {
