@@ -20,7 +20,7 @@ template <int N>
 struct Kernel {
     using IntersectFn = void (*)(const SceneView<N>&, const Ray*, Hit*, size_t, TraversalCost*);
     using OccludedFn = void (*)(const SceneView<N>&, const Ray*, uint8_t*, size_t, TraversalCost*);
-    /// Occlusion with a shadow cache (the single-ray and K-wide packet kernels).
+    /// Occlusion with a shadow cache (the single-ray kernel and the packets).
     using OccludedCachedFn = void (*)(const SceneView<N>&, const Ray*, uint8_t*, size_t, ShadowCache&);
 
     const char* name = "";

@@ -52,13 +52,14 @@ struct SceneLeafIntersector {
         vbool<K> occluded(false);
         for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b) {
             cost.test(movemask(active), kBlockSize);
-            const vbool<K> hit = intersectBlockPacket<K, AnyHit>(leaves.blocks[b], p, active, h);
             if constexpr (AnyHit) {
+                const vbool<K> hit = occludeByBlock(leaves.blocks[b], p, active, h);
                 if (lastOccluder && any(hit)) *lastOccluder = b;
                 occluded |= hit;
-                h.t = select(hit, vfloat<K>(-__builtin_huge_valf()), h.t);
                 active = andNot(active, hit);
                 if (none(active)) break;
+            } else {
+                intersectBlockPacket<K, false>(leaves.blocks[b], p, active, h);
             }
         }
         return occluded;

@@ -257,13 +257,12 @@ template <int K>
     vbool<K> active = andNot(vbool<K>(true), done);
     cache.queries += uint32_t(__builtin_popcount(movemask(active)));
     for (int entry = 0; entry < ShadowCache::kBlocks && cache.blocks[entry] != ShadowCache::kEmpty && any(active);) {
-        const vbool<K> occluded = intersectBlockPacket<K, true>(leaves.blocks[cache.blocks[entry]], p, active, h);
+        const vbool<K> occluded = occludeByBlock(leaves.blocks[cache.blocks[entry]], p, active, h);
         if (none(occluded)) {
             cache.forget(entry);
             continue;
         }
         cache.hits += uint32_t(__builtin_popcount(movemask(occluded)));
-        h.t = select(occluded, vfloat<K>(-__builtin_huge_valf()), h.t);
         done |= occluded;
         active = andNot(active, occluded);
         ++entry;

@@ -97,5 +97,15 @@ template <int K, bool AnyHit>
     return anyHit;
 }
 
+/// Any-hit: the active lanes that the block occludes, their t set to -inf (how packets mark an
+/// occluded ray).
+template <int K>
+[[gnu::always_inline]] inline vbool<K> occludeByBlock(const TriangleBlock<kBlockSize>& block, const PacketRay<K>& p,
+                                                      const vbool<K>& active, PacketHit<K>& h) {
+    const vbool<K> occluded = intersectBlockPacket<K, true>(block, p, active, h);
+    h.t = select(occluded, vfloat<K>(-__builtin_huge_valf()), h.t);
+    return occluded;
+}
+
 } // namespace WIDERAY_ISA
 } // namespace wideray
