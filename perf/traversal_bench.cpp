@@ -2,7 +2,8 @@
 // and every kernel of the best ISA this CPU has (the rows of kernels/kernel_registry.h), on the primary,
 // diffuse and bounce rays of `wideray bench` (render/bench_rays.h) for the Stanford bunny, or a generated torus
 // when the shared meshes are absent. WIDERAY_TRAVERSAL_INPUT names another scene file or mesh (an
-// interior scene, say: `WIDERAY_TRAVERSAL_INPUT=scenes/sponza_interior.json wideray_perf`).
+// interior scene, say: `WIDERAY_TRAVERSAL_INPUT=scenes/sponza_interior.json wideray_perf`);
+// WIDERAY_TRAVERSAL_QUALITY=high traces the spatial-split build instead of the fast one.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -32,6 +33,11 @@ struct TraversalInputs {
 
 const char* chosenInput() { return std::getenv("WIDERAY_TRAVERSAL_INPUT"); }
 
+BuildQuality chosenQuality() {
+    const char* quality = std::getenv("WIDERAY_TRAVERSAL_QUALITY");
+    return quality && std::string(quality) == "high" ? BuildQuality::High : BuildQuality::Fast;
+}
+
 std::string inputName() {
     if (const char* input = chosenInput()) return std::filesystem::path(input).stem().string();
     return sharedMeshPath(kBunny) ? "bun_zipper" : "torus_160k";
@@ -45,7 +51,8 @@ const TraversalInputs& inputs() {
                       : bunny       ? sceneFromMesh(*bunny, kImageSize, kImageSize)
                                     : sceneFromMesh(makeTorus(1.0f, 0.3f, 400, 200), kImageSize, kImageSize);
         TraversalInputs in;
-        in.bvh = std::make_shared<const WideBvhStructure<8>>(std::make_shared<const SceneGeometry>(scene));
+        in.bvh = std::make_shared<const WideBvhStructure<8>>(std::make_shared<const SceneGeometry>(scene),
+                                                             chosenQuality());
         in.rays = makeBenchRays(scene, *in.bvh->tracer({"scalar"}), kImageSize, kImageSize);
         return in;
     }();

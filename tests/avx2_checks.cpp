@@ -3,6 +3,7 @@
 #define WIDERAY_ISA avx2_test
 #include "child_order_check.h"
 #include "lane_state_check.h"
+#include "transpose_min_check.h"
 
 namespace wideray::test {
 
@@ -13,5 +14,7 @@ ChildOrderResult runPushNearestLastAvx2(const float* distances, uint32_t mask) {
 int laneStateMismatchesAvx2(const Ray* rays, int count) { return laneStateMismatches(rays, count); }
 
 int streamSlotStateMismatchesAvx2(const Ray* rays, int count) { return streamSlotStateMismatches(rays, count); }
+
+int transposeMinMismatchesAvx2(int rounds) { return transposeMinMismatches(rounds); }
 
 } // namespace wideray::test

@@ -4,6 +4,8 @@
 #include <random>
 
 #include "kernels/traverse_packet.h"
+#include "simd/cpu_features.h"
+#include "transpose_min_check.h"
 
 namespace wideray::test {
 namespace {
@@ -66,6 +68,80 @@ TEST(RayInterval, EntersEveryChildThatOneOfItsRaysEnters) {
     }
     EXPECT_GT(entered, 1000);  // the boxes are where the rays are
     EXPECT_EQ(missed, 0);
+}
+
+/// The sub-packets' interval test at a leaf (SubPacketIntervals::enter) must enter every box that one
+/// of the sub-packet's rays enters, and (to be worth its cost) miss most boxes that none of them
+/// enters. Sub-packets of rays from one origin (a camera's) and from spread origins (shadow rays'),
+/// with hits at various distances, against boxes around points along the rays and between them.
+TEST(SubPacketIntervals, EnterEveryBoxThatOneOfTheirRaysEnters) {
+    constexpr int K = kMaxWidth, P = 256 / K;
+    std::mt19937 random(11);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f), fraction(0.0f, 1.0f);
+    int entered = 0, missed = 0, notEntered = 0, culled = 0;
+    for (int packet = 0; packet < 200; ++packet) {
+        const bool oneOrigin = packet % 2 == 0;
+        const float o[3] = {10.0f * unit(random), 10.0f * unit(random), 10.0f * unit(random)};
+        const float d[3] = {unit(random), unit(random), unit(random)};
+        Ray rays[K * P];
+        for (int i = 0; i < K * P; ++i) {
+            const float u = float(i % 16) / 16.0f - 0.5f, v = float(i / 16) / 16.0f - 0.5f;  // a 16x16 tile
+            Ray& r = rays[i];
+            r = {o[0], o[1], o[2], d[0] + 0.1f * u, d[1] + 0.1f * v, d[2] + 0.05f * u * v, 0.0f, __builtin_huge_valf()};
+            if (!oneOrigin) r.ox += u, r.oy += v, r.oz += 0.5f * u;
+            if ((r.dx < 0) != (d[0] < 0)) r.dx = -r.dx;
+            if ((r.dy < 0) != (d[1] < 0)) r.dy = -r.dy;
+            if ((r.dz < 0) != (d[2] < 0)) r.dz = -r.dz;
+        }
+        PacketRay<K> packets[P];
+        PacketHit<K> hits[P];
+        vbool<K> valid[P], done[P];
+        RayBounds<K> all;
+        for (int s = 0; s < P; ++s) {
+            valid[s] = loadPacket(rays + s * K, K, packets[s], hits[s]);
+            done[s] = vbool<K>(false);
+            hits[s].t = vfloat<K>(packet % 3 == 0 ? 30.0f * fraction(random) : __builtin_huge_valf());
+            all.add(packets[s], valid[s]);
+        }
+        if (!packets[0].uniformOctant) continue;
+        const RayInterval whole = all.interval(packets[0]);
+        SubPacketIntervals<P> sub;
+        const uint64_t live = P == 64 ? ~uint64_t(0) : (uint64_t(1) << P) - 1;
+        sub.bound(packets, hits, valid, done, live, whole);
+        for (int box = 0; box < 50; ++box) {
+            const Ray& r = rays[std::uniform_int_distribution<int>(0, K * P - 1)(random)];
+            const float t = 40.0f * fraction(random), size = 0.02f + 0.5f * fraction(random);
+            float lower[3], upper[3];
+            const float at[3] = {r.ox + t * r.dx, r.oy + t * r.dy, r.oz + t * r.dz};
+            for (int a = 0; a < 3; ++a) {
+                lower[a] = at[a] - size * fraction(random);
+                upper[a] = at[a] + size * fraction(random);
+            }
+            const uint64_t byInterval = sub.enter(lower, upper);
+            for (int s = 0; s < P; ++s) {
+                const vfloat<K> entries = packetBoxEntry(lower[0], lower[1], lower[2], upper[0], upper[1], upper[2],
+                                                         packets[s], hits[s].t, valid[s]);
+                const bool byRays = any(entries < vfloat<K>(__builtin_huge_valf()));
+                const bool byBound = byInterval >> s & 1;
+                if (byRays) ++entered, missed += !byBound;
+                else ++notEntered, culled += !byBound;
+            }
+        }
+    }
+    EXPECT_GT(entered, 2000);
+    EXPECT_EQ(missed, 0);
+    EXPECT_GT(culled, notEntered / 2);
+}
+
+/// transposeMin gives each vector's least lane, as reduceMin does one vector at a time, on every ISA.
+TEST(SubPacketIntervals, TransposeMinIsEachVectorsMinimum) {
+    EXPECT_EQ(transposeMinMismatches(100), 0);
+    if (cpuSupports(Isa::Avx2)) {
+        EXPECT_EQ(transposeMinMismatchesAvx2(100), 0);
+    }
+    if (cpuSupports(Isa::Avx512)) {
+        EXPECT_EQ(transposeMinMismatchesAvx512(100), 0);
+    }
 }
 
 } // namespace

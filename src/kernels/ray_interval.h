@@ -20,9 +20,34 @@ struct RayInterval {
     float tnear;
 };
 
+/// One axis of the interval test: narrows [entry, exit] to where rays with origins in [oLo, oHi] and
+/// reciprocal directions in [rLo, rHi], all negative or all positive, can be between the slab's near
+/// and far planes, widened by `margin`. (plane - o) * rd is monotonic in o, so its extremes are
+/// products with the near plane's farthest origin and the far plane's nearest (by the sign of rd),
+/// and either end of [rLo, rHi]: the same roundings as the least and largest of all four endpoint
+/// products.
+template <class F>
+[[gnu::always_inline]] inline void intervalSlab(bool negative, const F& nearPlane, const F& farPlane, const F& oLo,
+                                                const F& oHi, const F& rLo, const F& rHi, const F& margin, F& entry,
+                                                F& exit) {
+    const F n = negative ? nearPlane - oLo : nearPlane - oHi;
+    const F f = negative ? farPlane - oHi : farPlane - oLo;
+    entry = max(min(n * rLo, n * rHi) - margin, entry);
+    exit = min(max(f * rLo, f * rHi) + margin, exit);
+}
+
+/// Widens [entry, exit] by 2^-16 relative, far more than the rounding of the interval products, and
+/// returns where the interval enters the box.
+template <class F>
+[[gnu::always_inline]] inline auto intervalEnters(F& entry, F& exit) {
+    const F lowerScale(1.0f - 1.0f / 65536.0f), upperScale(kRobustFarScale);
+    entry = select(entry > F(0.0f), entry * lowerScale, entry * upperScale);
+    exit = select(exit > F(0.0f), exit * upperScale, exit * lowerScale);
+    return entry <= exit;
+}
+
 /// Interval test of all N children of a node. The bounds are widened by the interval's margin and
-/// then by 2^-16 relative, far more than the rounding of the interval products, so that no child that
-/// one of the rays' own slab tests enters is lost.
+/// then by 2^-16 relative, so that no child that one of the rays' own slab tests enters is lost.
 template <int N>
 [[gnu::always_inline]] inline uint32_t intersectChildrenInterval(const WideNode<N>& node, const RayInterval& r,
                                                                  float tfarMax, float* tEntryOut) {
@@ -31,25 +56,12 @@ template <int N>
     uint32_t mask = 0;
     for (int c = 0; c < N; c += W) {
         F entry(r.tnear), exit(tfarMax);
-        for (int a = 0; a < 3; ++a) {
-            const float* nearPlane = node.planes(a, r.neg[a]) + c;
-            const float* farPlane = node.planes(a, !r.neg[a]) + c;
-            // (plane - o) * rd over o in [oLo, oHi] and rd in [rdLo, rdHi]: the extremes are among
-            // the four endpoint products.
-            F nLo = F::load(nearPlane) - F(r.oHi[a]), nHi = F::load(nearPlane) - F(r.oLo[a]);
-            F fLo = F::load(farPlane) - F(r.oHi[a]), fHi = F::load(farPlane) - F(r.oLo[a]);
-            F rLo(r.rdLo[a]), rHi(r.rdHi[a]);
-            const F margin(r.margin[a]);
-            F t0 = min(min(nLo * rLo, nLo * rHi), min(nHi * rLo, nHi * rHi)) - margin;
-            F t1 = max(max(fLo * rLo, fLo * rHi), max(fHi * rLo, fHi * rHi)) + margin;
-            entry = max(t0, entry);
-            exit = min(t1, exit);
-        }
-        const F lowerScale(1.0f - 1.0f / 65536.0f), upperScale(kRobustFarScale);
-        entry = select(entry > F(0.0f), entry * lowerScale, entry * upperScale);
-        exit = select(exit > F(0.0f), exit * upperScale, exit * lowerScale);
+        for (int a = 0; a < 3; ++a)
+            intervalSlab(r.neg[a], F::load(node.planes(a, r.neg[a]) + c), F::load(node.planes(a, !r.neg[a]) + c),
+                         F(r.oLo[a]), F(r.oHi[a]), F(r.rdLo[a]), F(r.rdHi[a]), F(r.margin[a]), entry, exit);
+        const auto enters = intervalEnters(entry, exit);
         entry.store(tEntryOut + c);
-        mask |= movemask(entry <= exit) << c;
+        mask |= movemask(enters) << c;
     }
     return mask;
 }
@@ -93,6 +105,96 @@ struct RayBounds {
         iv.tnear = reduceMin(tn);
         return iv;
     }
+};
+
+/// The intervals of the P sub-packets of a large packet, lane s for sub-packet s, which share one
+/// direction octant: one box is tested against all of them at once (a leaf's, before its sub-packets
+/// test it ray by ray). Each lane's test is intersectChildrenInterval's for that sub-packet's interval,
+/// and as conservative. Lanes of sub-packets without rays left never enter.
+template <int P>
+struct SubPacketIntervals {
+    static constexpr int W = P < kMaxWidth ? P : kMaxWidth;
+    using F = vfloat<W>;
+    alignas(64) float oLo[3][P], oHi[3][P], rdLo[3][P], rdHi[3][P], margin[3][P];
+    alignas(64) float tnear[P], tfar[P];  ///< tfar: the farthest culling distance of the sub-packet's rays
+    bool neg[3];
+
+    /// Bounds the sub-packets in `live` (bit s: sub-packet s) of a packet whose interval is `whole`:
+    /// their origins and reciprocal directions as RayBounds::interval bounds a packet's, and the
+    /// farthest culling distance of their rays not done. The others never enter.
+    template <int K>
+    void bound(const PacketRay<K>* packets, const PacketHit<K>* hits, const vbool<K>* valid, const vbool<K>* done,
+               uint64_t live, const RayInterval& whole) {
+        static_assert(W == K, "one vector of lanes per sub-packet");
+        using V = vfloat<K>;
+        const V inf(__builtin_huge_valf());
+        for (int a = 0; a < 3; ++a) neg[a] = whole.neg[a];
+        for (int g = 0; g < P; g += K) {
+            // The least (or with Largest, the largest) of a value over each sub-packet's lanes in `lanes`.
+            auto reduce = [&]<bool Largest>(auto value, auto lanes, float* out) {
+                V q[K];
+                for (int s = 0; s < K; ++s) q[s] = select(lanes(g + s), Largest ? -value(g + s) : value(g + s), inf);
+                const V r = transposeMin(q);
+                (Largest ? -r : r).store(out + g);
+            };
+            auto validLanes = [&](int s) { return valid[s]; };
+            for (int a = 0; a < 3; ++a) {
+                const auto o = [&](int s) {
+                    const PacketRay<K>& p = packets[s];
+                    return a == 0 ? p.ox : a == 1 ? p.oy : p.oz;
+                };
+                const auto rd = [&](int s) {
+                    const PacketRay<K>& p = packets[s];
+                    return a == 0 ? p.slab.rdx : a == 1 ? p.slab.rdy : p.slab.rdz;
+                };
+                if (whole.oLo[a] == whole.oHi[a]) {  // one origin for all rays (a pinhole camera's)
+                    V(whole.oLo[a]).store(oLo[a] + g);
+                    V(whole.oLo[a]).store(oHi[a] + g);
+                } else {
+                    reduce.template operator()<false>(o, validLanes, oLo[a]);
+                    reduce.template operator()<true>(o, validLanes, oHi[a]);
+                }
+                reduce.template operator()<false>(rd, validLanes, rdLo[a]);
+                reduce.template operator()<true>(rd, validLanes, rdHi[a]);
+            }
+            reduce.template operator()<false>([&](int s) { return packets[s].tnear; }, validLanes, tnear);
+            reduce.template operator()<true>([&](int s) { return hits[s].t; },
+                                             [&](int s) { return andNot(valid[s], done[s]); }, tfar);
+            for (int a = 0; a < 3; ++a) {
+                // Infinite reciprocals (zero direction components) clamped, as RayBounds::interval does.
+                const V lo = max(V::load(rdLo[a] + g), V(-3.0e38f)), hi = min(V::load(rdHi[a] + g), V(3.0e38f));
+                lo.store(rdLo[a] + g);
+                hi.store(rdHi[a] + g);
+                const V reach = max(abs(V::load(oLo[a] + g)), abs(V::load(oHi[a] + g)));
+                (V(0x1p-21f) * reach * max(abs(lo), abs(hi))).store(margin[a] + g);
+            }
+        }
+        for (int s = 0; s < P; ++s)
+            if (!(live >> s & 1)) retire(s);
+    }
+
+    void retire(int s) {
+        for (int a = 0; a < 3; ++a) oLo[a][s] = oHi[a][s] = rdLo[a][s] = rdHi[a][s] = margin[a][s] = 0.0f;
+        tnear[s] = __builtin_huge_valf();
+        tfar[s] = -__builtin_huge_valf();
+    }
+
+    /// The sub-packets whose interval enters the box (bit s: sub-packet s).
+    [[gnu::always_inline]] uint64_t enter(const float (&lower)[3], const float (&upper)[3]) const {
+        uint64_t mask = 0;
+        for (int c = 0; c < P; c += W) {
+            F entry = F::load(tnear + c), exit = F::load(tfar + c);
+            for (int a = 0; a < 3; ++a)
+                intervalSlab(neg[a], F(neg[a] ? upper[a] : lower[a]), F(neg[a] ? lower[a] : upper[a]),
+                             F::load(oLo[a] + c), F::load(oHi[a] + c), F::load(rdLo[a] + c), F::load(rdHi[a] + c),
+                             F::load(margin[a] + c), entry, exit);
+            mask |= uint64_t(movemask(intervalEnters(entry, exit))) << c;
+        }
+        return mask;
+    }
+
+    /// Sub-packet s's rays now cull beyond tfarMax (-inf: none is left).
+    void narrow(int s, float tfarMax) { tfar[s] = tfarMax; }
 };
 
 /// Interval bounds are only tight for nearly parallel rays (a camera tile, shadow rays from

@@ -95,6 +95,21 @@ inline int compressStore(int32_t* out, vint16 values, vbool16 mask) {
     return __builtin_popcount(mask.m);
 }
 inline float reduceMin(vfloat16 a) { return _mm512_reduce_min_ps(a.m); }
+/// Lane i: the least lane of v[i] (sixteen reductions at once: 128-bit blocks folded twice, then a
+/// 4x4 transpose in each block and the blocks put in order).
+inline vfloat16 transposeMin(const vfloat16 (&v)[16]) {
+    __m512 w[8], x[4];
+    for (int i = 0; i < 8; ++i)  // blocks 0-1: partial minima of v[i], 2-3: of v[i + 8]
+        w[i] = _mm512_min_ps(_mm512_shuffle_f32x4(v[i].m, v[i + 8].m, 0x44),
+                             _mm512_shuffle_f32x4(v[i].m, v[i + 8].m, 0xEE));
+    for (int i = 0; i < 4; ++i)  // blocks: v[i], v[i + 8], v[i + 4], v[i + 12]
+        x[i] = _mm512_min_ps(_mm512_shuffle_f32x4(w[i], w[i + 4], 0x88), _mm512_shuffle_f32x4(w[i], w[i + 4], 0xDD));
+    const __m512 t0 = _mm512_unpacklo_ps(x[0], x[1]), t1 = _mm512_unpackhi_ps(x[0], x[1]);
+    const __m512 t2 = _mm512_unpacklo_ps(x[2], x[3]), t3 = _mm512_unpackhi_ps(x[2], x[3]);
+    const __m512 m = _mm512_min_ps(_mm512_min_ps(_mm512_shuffle_ps(t0, t2, 0x44), _mm512_shuffle_ps(t0, t2, 0xEE)),
+                                   _mm512_min_ps(_mm512_shuffle_ps(t1, t3, 0x44), _mm512_shuffle_ps(t1, t3, 0xEE)));
+    return _mm512_shuffle_f32x4(m, m, 0xD8);
+}
 inline vfloat16 fromQuarters16(const vfloat4* q) {
     __m512 v = _mm512_castps128_ps512(q[0].m);
     v = _mm512_insertf32x4(v, q[1].m, 1);

@@ -104,6 +104,12 @@ inline float reduceMin(vfloat4 a) {
     m = _mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
     return _mm_cvtss_f32(m);
 }
+/// Lane i: the least lane of v[i] (four reductions at once, by a transpose).
+inline vfloat4 transposeMin(const vfloat4 (&v)[4]) {
+    __m128 a = v[0].m, b = v[1].m, c = v[2].m, d = v[3].m;
+    _MM_TRANSPOSE4_PS(a, b, c, d);
+    return _mm_min_ps(_mm_min_ps(a, b), _mm_min_ps(c, d));
+}
 inline vbool4 isFinite(vfloat4 a) { return abs(a) < vfloat4(__builtin_huge_valf()); }
 
 } // namespace simd

@@ -89,6 +89,18 @@ inline float reduceMin(vfloat8 a) {
     m = _mm_min_ps(m, _mm_shuffle_ps(m, m, _MM_SHUFFLE(1, 0, 3, 2)));
     return _mm_cvtss_f32(m);
 }
+/// Lane i: the least lane of v[i] (eight reductions at once: halves folded, then a 4x4 transpose in
+/// each 128-bit half).
+inline vfloat8 transposeMin(const vfloat8 (&v)[8]) {
+    __m256 w[4];
+    for (int i = 0; i < 4; ++i)  // lanes 0-3: partial minima of v[i], 4-7: of v[i + 4]
+        w[i] = _mm256_min_ps(_mm256_permute2f128_ps(v[i].m, v[i + 4].m, 0x20),
+                             _mm256_permute2f128_ps(v[i].m, v[i + 4].m, 0x31));
+    const __m256 t0 = _mm256_unpacklo_ps(w[0], w[1]), t1 = _mm256_unpackhi_ps(w[0], w[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(w[2], w[3]), t3 = _mm256_unpackhi_ps(w[2], w[3]);
+    return _mm256_min_ps(_mm256_min_ps(_mm256_shuffle_ps(t0, t2, 0x44), _mm256_shuffle_ps(t0, t2, 0xEE)),
+                         _mm256_min_ps(_mm256_shuffle_ps(t1, t3, 0x44), _mm256_shuffle_ps(t1, t3, 0xEE)));
+}
 inline vfloat8 fromQuarters8(const vfloat4* q) {
     return _mm256_insertf128_ps(_mm256_castps128_ps256(q[0].m), q[1].m, 1);
 }

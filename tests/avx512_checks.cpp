@@ -1,0 +1,10 @@
+// The AVX-512 builds of the tests' per-ISA checks (compiled with AVX-512 flags, see
+// tests/CMakeLists.txt); nothing here runs unless the CPU has AVX-512.
+#define WIDERAY_ISA avx512_test
+#include "transpose_min_check.h"
+
+namespace wideray::test {
+
+int transposeMinMismatchesAvx512(int rounds) { return transposeMinMismatches(rounds); }
+
+} // namespace wideray::test
