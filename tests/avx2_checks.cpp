@@ -15,6 +15,6 @@ int laneStateMismatchesAvx2(const Ray* rays, int count) { return laneStateMismat
 
 int streamSlotStateMismatchesAvx2(const Ray* rays, int count) { return streamSlotStateMismatches(rays, count); }
 
-int transposeMinMismatchesAvx2(int rounds) { return transposeMinMismatches(rounds); }
+int transposeMinMismatchesAvx2(const float* values, int rounds) { return transposeMinMismatches(values, rounds); }
 
 } // namespace wideray::test

@@ -5,6 +5,6 @@
 
 namespace wideray::test {
 
-int transposeMinMismatchesAvx512(int rounds) { return transposeMinMismatches(rounds); }
+int transposeMinMismatchesAvx512(const float* values, int rounds) { return transposeMinMismatches(values, rounds); }
 
 } // namespace wideray::test

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "kernels/traverse_packet.h"
 #include "simd/cpu_features.h"
@@ -133,14 +134,23 @@ TEST(SubPacketIntervals, EnterEveryBoxThatOneOfTheirRaysEnters) {
     EXPECT_GT(culled, notEntered / 2);
 }
 
-/// transposeMin gives each vector's least lane, as reduceMin does one vector at a time, on every ISA.
+/// transposeMin gives each vector's least lane, as reduceMin does one vector at a time, on every ISA
+/// (with ties among the lanes every fourth round).
 TEST(SubPacketIntervals, TransposeMinIsEachVectorsMinimum) {
-    EXPECT_EQ(transposeMinMismatches(100), 0);
+    constexpr int kRounds = 100;
+    std::mt19937 random(3);
+    std::uniform_real_distribution<float> value(-100.0f, 100.0f);
+    std::vector<float> values(kRounds * kTransposeMinValuesPerRound);
+    for (size_t i = 0; i < values.size(); ++i) {
+        const bool ties = i / kTransposeMinValuesPerRound % 4 == 0;
+        values[i] = ties ? std::round(value(random) / 50.0f) : value(random);
+    }
+    EXPECT_EQ(transposeMinMismatches(values.data(), kRounds), 0);
     if (cpuSupports(Isa::Avx2)) {
-        EXPECT_EQ(transposeMinMismatchesAvx2(100), 0);
+        EXPECT_EQ(transposeMinMismatchesAvx2(values.data(), kRounds), 0);
     }
     if (cpuSupports(Isa::Avx512)) {
-        EXPECT_EQ(transposeMinMismatchesAvx512(100), 0);
+        EXPECT_EQ(transposeMinMismatchesAvx512(values.data(), kRounds), 0);
     }
 }
 
