@@ -225,6 +225,54 @@ TEST(Bvh, HighQualityCostsAtMostTheFastBuild) {
     for (const char* file : kSharedMeshes) expectCheaper(loadMesh(*dir / file), file);
 }
 
+/// A room (floor, ceiling, three walls: two triangles each) with two boxes in it, the Cornell box's
+/// layout: large triangles at right angles, which leaves of four keep together badly.
+TriangleMesh roomWithBoxes() {
+    TriangleMesh mesh;
+    auto quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d) {
+        const uint32_t first = uint32_t(mesh.positions.size());
+        mesh.positions.insert(mesh.positions.end(), {a, b, c, d});
+        mesh.triangles.push_back({first, first + 1, first + 2});
+        mesh.triangles.push_back({first, first + 2, first + 3});
+    };
+    quad({0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1});  // floor
+    quad({0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0});  // ceiling
+    quad({0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0});  // back
+    quad({0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0});  // left
+    quad({1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1});  // right
+    auto box = [&](glm::vec3 lo, glm::vec3 hi) {
+        const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
+                                {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+        quad(c[0], c[1], c[2], c[3]), quad(c[4], c[7], c[6], c[5]), quad(c[0], c[4], c[5], c[1]);
+        quad(c[3], c[2], c[6], c[7]), quad(c[0], c[3], c[7], c[4]), quad(c[1], c[5], c[6], c[2]);
+    };
+    box({0.15f, 0.0f, 0.2f}, {0.45f, 0.6f, 0.5f});
+    box({0.55f, 0.0f, 0.5f}, {0.85f, 0.3f, 0.8f});
+    return mesh;
+}
+
+/// Below BvhBuildConfig::singlePrimLeavesBelow the high build splits its binary tree down to single
+/// triangles and the collapse chooses the leaves, which separates what the binary build's leaf test
+/// kept together (without it the high build's cost equals the fast one's on these).
+TEST(Bvh, HighQualityLetsTheCollapseChooseTheLeavesOfSmallMeshes) {
+    auto cost = [](const TriangleMesh& mesh, BuildQuality quality) {
+        BvhBuildConfig config = SceneAccel<8>::defaultConfig();
+        config.quality = quality;
+        SceneAccel<8> accel(std::make_shared<SceneGeometry>(mesh), config);
+        return wideBvhStats(accel.bvh(), config).sahCost;
+    };
+    auto expectCheaper = [&](const TriangleMesh& mesh, const std::string& name) {
+        const double fast = cost(mesh, BuildQuality::Fast), high = cost(mesh, BuildQuality::High);
+        EXPECT_LT(high, 0.9 * fast) << name;
+        std::printf("  %-40s BVH8 SAH cost: fast %.3f, high %.3f\n", name.c_str(), fast, high);
+    };
+    expectCheaper(roomWithBoxes(), "room with two boxes");
+    auto dir = sharedScenesDir();
+    if (!dir) GTEST_SKIP() << "the shared meshes need ../shared/scenes (or WIDERAY_SCENES)";
+    expectCheaper(loadMesh(*dir / "cornell-box/CornellBox-Original.obj"), "Cornell box");
+    expectCheaper(loadMesh(*dir / "suzanne/suzanne.obj"), "Suzanne");
+}
+
 template <int N>
 BvhStats wideStats(const TriangleMesh& mesh, CollapseMethod collapse) {
     BvhBuildConfig config = SceneAccel<N>::defaultConfig();

@@ -86,7 +86,8 @@ void reduceRange(uint32_t begin, uint32_t end, T& result, Make make, Add add) {
 class Builder {
 public:
     Builder(BuildRefs& refs, const BvhBuildConfig& config, const TriangleSplitter* splitter, BinaryBvh& out)
-        : refs_(refs), config_(config), splitter_(config.quality == BuildQuality::High ? splitter : nullptr), out_(out) {}
+        : refs_(refs), config_(config), splitter_(config.quality == BuildQuality::High ? splitter : nullptr), out_(out),
+          toSinglePrims_(config.quality == BuildQuality::High && refs.size() < config.singlePrimLeavesBelow) {}
 
     void build() {
         const uint32_t primCount = uint32_t(refs_.size());
@@ -217,7 +218,7 @@ private:
     bool split(const BuildRange& range, int depth, BuildRange& left, BuildRange& right) {
         const uint32_t count = range.size();
         if (count == 1) return false;
-        const bool fitsLeaf = count <= uint32_t(config_.maxLeafSize);
+        const bool fitsLeaf = count <= uint32_t(config_.maxLeafSize) && !toSinglePrims_;
         // One block's leaf costs intersectionCost, any split at least traversalCost: where that is no
         // less, the SAH below would choose the leaf, so it is chosen without binning.
         if (fitsLeaf && count <= blockSize() && config_.traversalCost >= config_.intersectionCost && config_.intersectionCost >= 0)
@@ -527,6 +528,7 @@ private:
     BinaryNode* nodes_ = nullptr;
     UninitializedVector<uint32_t> refsBelow_;  ///< per node: the references in its subtree's leaves
     float rootHalfArea_ = 0;
+    const bool toSinglePrims_;  ///< split down to single primitives (BvhBuildConfig::singlePrimLeavesBelow)
     /// Taken by every inner node on every thread: on a cache line of its own, so that its writes do
     /// not evict the members above from the other threads' caches.
     alignas(64) std::atomic<uint32_t> nodeCount_{0};
