@@ -66,6 +66,20 @@ template <int N>
     return mask;
 }
 
+/// Reciprocal bounds with infinities (zero direction components) clamped, so that 0 * inf cannot
+/// appear in the interval products; F is float or a vector of bundles.
+template <class F>
+inline void clampReciprocals(F& rdLo, F& rdHi) {
+    rdLo = max(rdLo, F(-3.0e38f));
+    rdHi = min(rdHi, F(3.0e38f));
+}
+
+/// The interval's margin along one axis (RayInterval::margin) from its bounds.
+template <class F>
+inline F intervalMargin(const F& oLo, const F& oHi, const F& rdLo, const F& rdHi) {
+    return F(0x1p-21f) * max(abs(oLo), abs(oHi)) * max(abs(rdLo), abs(rdHi));
+}
+
 /// Accumulates the bounds of the valid lanes of K-wide packets into a RayInterval.
 template <int K>
 struct RayBounds {
@@ -99,8 +113,9 @@ struct RayBounds {
         for (int a = 0; a < 3; ++a) {
             iv.oLo[a] = reduceMin(oLo[a]); iv.oHi[a] = -reduceMin(-oHi[a]);
             // Infinite reciprocals (zero direction components) clamped, so that 0 * inf cannot appear.
-            iv.rdLo[a] = max(reduceMin(rLo[a]), -3.0e38f); iv.rdHi[a] = min(-reduceMin(-rHi[a]), 3.0e38f);
-            iv.margin[a] = 0x1p-21f * max(abs(iv.oLo[a]), abs(iv.oHi[a])) * max(abs(iv.rdLo[a]), abs(iv.rdHi[a]));
+            iv.rdLo[a] = reduceMin(rLo[a]); iv.rdHi[a] = -reduceMin(-rHi[a]);
+            clampReciprocals(iv.rdLo[a], iv.rdHi[a]);
+            iv.margin[a] = intervalMargin(iv.oLo[a], iv.oHi[a], iv.rdLo[a], iv.rdHi[a]);
         }
         iv.tnear = reduceMin(tn);
         return iv;
@@ -161,12 +176,11 @@ struct SubPacketIntervals {
             reduce.template operator()<true>([&](int s) { return hits[s].t; },
                                              [&](int s) { return andNot(valid[s], done[s]); }, tfar);
             for (int a = 0; a < 3; ++a) {
-                // Infinite reciprocals (zero direction components) clamped, as RayBounds::interval does.
-                const V lo = max(V::load(rdLo[a] + g), V(-3.0e38f)), hi = min(V::load(rdHi[a] + g), V(3.0e38f));
+                V lo = V::load(rdLo[a] + g), hi = V::load(rdHi[a] + g);
+                clampReciprocals(lo, hi);
                 lo.store(rdLo[a] + g);
                 hi.store(rdHi[a] + g);
-                const V reach = max(abs(V::load(oLo[a] + g)), abs(V::load(oHi[a] + g)));
-                (V(0x1p-21f) * reach * max(abs(lo), abs(hi))).store(margin[a] + g);
+                intervalMargin(V::load(oLo[a] + g), V::load(oHi[a] + g), lo, hi).store(margin[a] + g);
             }
         }
         for (int s = 0; s < P; ++s)

@@ -86,11 +86,6 @@ struct LargePacket {
         return -reduceMin(-select(done[s], F(-__builtin_huge_valf()), hits[s].t));
     }
 
-    /// The interval of each sub-packet with rays left (the packet's rays share one octant).
-    void boundSubPackets(SubPacketIntervals<P>& sub, const RayInterval& iv) const {
-        sub.bound(packets, hits, valid, done, anyValid, iv);
-    }
-
     template <bool AnyHit>
     void write(int count, Hit* hitsOut, uint8_t* occludedOut, TraversalCost* costsOut) const {
         for (int s = 0; s < subCount; ++s) {
@@ -197,7 +192,7 @@ inline void traceLargePacketCounted(const SceneView<N>& scene, const Ray* rays, 
             const LeafBox& b = e.box;
             if (!AnyHit && subTested >= kSubPacketWindow && (subSkipped * 2 >= subTested) != bySubPacket) {
                 bySubPacket = !bySubPacket;
-                if (!bounded) lp.boundSubPackets(sub, iv), bounded = true;
+                if (!bounded) sub.bound(lp.packets, lp.hits, lp.valid, lp.done, lp.anyValid, iv), bounded = true;
                 subTested = subSkipped = 0;
             }
             uint64_t entered = lp.anyValid;
