@@ -347,7 +347,9 @@ TEST(Kernels, CostsMeasureTheChosenKernel) {
             const std::string name = kernel.name;
             if (name == "scalar") {
                 EXPECT_EQ(total(costs), total(singleCosts)) << "same order, same work";
-            } else if (name != "single") {
+            } else if (name != "single" && name != "drst") {
+                // (drst visits every ray's children in its own nearest-first order and drops the rays
+                // whose hits end them before a node, as a single ray does: here the same work.)
                 EXPECT_NE(total(costs), total(singleCosts)) << name << " " << isaName(isa);
             }
         }

@@ -21,13 +21,14 @@ void* allocate(size_t bytes) {
 StreamWorkspace::~StreamWorkspace() {
     std::free(ox);
     std::free(arena);
+    std::free(arenaEntry);
     std::free(stack);
 }
 
 void StreamWorkspace::reserveRays(size_t n) {
     if (n <= capacity) return;
     size_t stride = (n + 15) / 16 * 16;  // keeps every array 64-byte aligned
-    size_t bytes = stride * (4 * (kFloatArrays + kIntArrays + kIdArrays) + 2 * sizeof(uint64_t) + 1);
+    size_t bytes = stride * (4 * (kFloatArrays + kMaxStreamNodeWidth + kIntArrays + kIdArrays) + 2 * sizeof(uint64_t) + 1);
     char* block = static_cast<char*>(allocate(bytes));
     std::free(ox);
     float** floats[kFloatArrays] = {&ox, &oy, &oz, &rdx, &rdy, &rdz, &tnear, &tfar, &sx, &sy, &sz, &u, &v};
@@ -35,6 +36,8 @@ void StreamWorkspace::reserveRays(size_t n) {
         *f = reinterpret_cast<float*>(block);
         block += stride * 4;
     }
+    childEntries = reinterpret_cast<float*>(block);
+    block += stride * 4 * kMaxStreamNodeWidth;
     for (int32_t** a : {&kx, &ky, &kz, &prim, &visits}) {
         *a = reinterpret_cast<int32_t*>(block);
         block += stride * 4;
@@ -55,9 +58,21 @@ void StreamWorkspace::reserveArena(size_t n) {
     if (n <= arenaCapacity) return;
     size_t grown = std::max(n, arenaCapacity * 2);
     auto* bigger = static_cast<int32_t*>(allocate(grown * sizeof(int32_t)));
-    if (arena) std::memcpy(bigger, arena, arenaCapacity * sizeof(int32_t));
+    float* biggerEntry;
+    try {
+        biggerEntry = static_cast<float*>(allocate(grown * sizeof(float)));
+    } catch (...) {
+        std::free(bigger);
+        throw;
+    }
+    if (arena) {
+        std::memcpy(bigger, arena, arenaCapacity * sizeof(int32_t));
+        std::memcpy(biggerEntry, arenaEntry, arenaCapacity * sizeof(float));
+    }
     std::free(arena);
+    std::free(arenaEntry);
     arena = bigger;
+    arenaEntry = biggerEntry;
     arenaCapacity = grown;
 }
 

@@ -13,6 +13,9 @@ struct StreamWorkspace {
     float *tnear = nullptr, *tfar = nullptr, *sx = nullptr, *sy = nullptr, *sz = nullptr, *u = nullptr, *v = nullptr;
     int32_t *kx = nullptr, *ky = nullptr, *kz = nullptr, *prim = nullptr;
     int32_t* visits = nullptr;  ///< per ray of the list being split: its children and their order
+    /// Per ray of the list being split, kMaxStreamNodeWidth of them: its entries into the children
+    /// (chunk by chunk: K rays' entries into the first child, then into the second, ...).
+    float* childEntries = nullptr;
     uint32_t* rayOf = nullptr;  ///< stream slot -> index in the caller's array
     uint32_t *userGeomId = nullptr, *userPrimId = nullptr;  ///< the ids of closest hits on user primitives
     uint32_t *costNodes = nullptr, *costLeaves = nullptr, *costPrimitives = nullptr;  ///< traversal work, when counted
@@ -24,6 +27,7 @@ struct StreamWorkspace {
     uint8_t* valid = nullptr;   ///< per ray of the caller's array: whether it is traced at all
     size_t capacity = 0;
     int32_t* arena = nullptr;   ///< the ray lists of the nodes waiting on the traversal stack
+    float* arenaEntry = nullptr;  ///< beside each arena entry: where its ray enters the list's node
     size_t arenaCapacity = 0;
     void* stack = nullptr;      ///< the traversal stack (its entry type belongs to the kernel)
     size_t stackBytes = 0;
@@ -45,5 +49,7 @@ struct StreamWorkspace {
 };
 
 constexpr int kKeyIndexBits = 31;
+/// The widest node a stream traverses (childEntries has room for its children).
+constexpr int kMaxStreamNodeWidth = 8;
 
 } // namespace wideray

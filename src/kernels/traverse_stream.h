@@ -191,34 +191,24 @@ enum class StreamOrder {
 /// A list of rays waiting on the traversal stack for a node.
 struct StreamEntry {
     NodeRef ref;
-    uint32_t begin, end;  ///< the list in the arena
+    uint32_t begin, end;  ///< the list in the arena (arenaEntry: where each ray enters the node)
     uint32_t restoreTop;  ///< the arena's top once the list is taken off the stack
-    uint32_t recheck;     ///< parent * N + slot of a leaf that its rays reach after a nearer sibling
+    bool afterSibling;    ///< its rays come from a sibling visited first, which may have found hits nearer than this node
 };
-constexpr uint32_t kNoRecheck = ~0u;
 
 /// A node pushes at most N * N lists (ByRay: child x rank).
 template <int N>
 constexpr int kStreamStackSize = kMaxBvhDepth * N * N + 1;
 
 /// The rays of a leaf's list against its primitives, K at a time.
-template <int N, int K, bool AnyHit, class Leaves>
-inline void traceStreamLeaf(const SceneView<N>& scene, const Leaves& leaves, const Ray* rays, const StreamEntry& e,
-                            StreamWorkspace& ws) {
-    using F = vfloat<K>;
-    const WideNode<N>* parent = e.recheck == kNoRecheck ? nullptr : &scene.nodes[e.recheck / N];
-    const int slot = int(e.recheck % N);
+template <int K, bool AnyHit, class Leaves>
+inline void traceStreamLeaf(const Leaves& leaves, const Ray* rays, const StreamEntry& e, StreamWorkspace& ws) {
     for (uint32_t at = e.begin; at < e.end; at += K) {
         const ListChunk<K> chunk = loadChunk<K>(&ws.arena[at], e.end - at);
         PacketRay<K> p;
         PacketHit<K> h;
         gatherPacket(ws, chunk, p, h);
-        vbool<K> active = chunk.valid & (p.tnear <= h.t);
-        // A hit found under a nearer sibling may end the ray before this leaf.
-        if (parent && any(active)) {
-            classifyOctant(p, movemask(active));
-            active &= packetChildEntry<N, K>(*parent, slot, p, h.t, active) < F(__builtin_huge_valf());
-        }
+        const vbool<K> active = chunk.valid & (p.tnear <= h.t);
         if (none(active)) continue;
         gatherWoop(ws, chunk, p, h);
         if (!e.ref.isUserLeaf()) classifyAxes(p, movemask(active));
@@ -293,6 +283,7 @@ inline int splitByList(const SceneView<N>& scene, const StreamEntry& e, StreamWo
             const vbool<K> enters = dist[c] < inf;
             closest[c] = min(closest[c], dist[c]);
             firstOf[c] += uint32_t(__builtin_popcount(movemask(enters & (nearestChild == vint<K>(c)))));
+            compressStore(&ws.arenaEntry[childEnd[c]], dist[c], enters);
             childEnd[c] += uint32_t(compressStore(&ws.arena[childEnd[c]], chunk.idx, enters));
         }
     }
@@ -316,10 +307,7 @@ inline int splitByList(const SceneView<N>& scene, const StreamEntry& e, StreamWo
     const uint32_t newTop = top + liveCount * region;
     for (int k = 0; k < childCount; ++k) {  // the last visited first, so that the first is popped first
         const int c = order[childCount - 1 - k].c;
-        const NodeRef child = node.child[live[c]];
-        // A leaf visited after a sibling may lie beyond hits found there.
-        const bool recheck = k < childCount - 1 && child.isLeaf();
-        push[k] = {child, top + c * region, childEnd[c], newTop, recheck ? e.ref.index() * N + uint32_t(live[c]) : kNoRecheck};
+        push[k] = {node.child[live[c]], top + c * region, childEnd[c], newTop, k < childCount - 1};
     }
     return childCount;
 }
@@ -334,7 +322,7 @@ inline int visitRank(uint32_t visits, int child) { return int(visits >> (8 + 3 *
 /// finishes the subtree of its nearest child before any list holds it for its next.
 template <int N, int K>
 inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWorkspace& ws, StreamEntry* push) {
-    static_assert(N <= 8, "the visit code has room for eight children");
+    static_assert(N <= 8 && N <= kMaxStreamNodeWidth, "the visit code and childEntries have room for eight children");
     using F = vfloat<K>;
     using I = vint<K>;
     const F inf(__builtin_huge_valf());
@@ -346,6 +334,7 @@ inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWor
         const ListChunk<K> chunk = loadChunk<K>(&ws.arena[at], e.end - at);
         F dist[N];
         childEntries<N, K>(node, live, liveCount, ws, chunk, dist);
+        for (int c = 0; c < liveCount; ++c) dist[c].store(&ws.childEntries[(at - e.begin) * N + c * K]);
         I visits(0);
         for (int c = 0; c < liveCount; ++c) {
             const vbool<K> enters = dist[c] < inf;
@@ -374,12 +363,17 @@ inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWor
         newTop += listSize[l];
     }
     ws.reserveArena(newTop + K);  // K of slack for the vector loads of the next level
+    int liveIndex[N];
+    for (int c = 0; c < liveCount; ++c) liveIndex[live[c]] = c;
     for (uint32_t j = 0; j < count; ++j) {
         const uint32_t v = uint32_t(ws.visits[j]);
         const int32_t ray = ws.arena[e.begin + j];
+        const float* entries = &ws.childEntries[(j - j % K) * N + j % K];
         for (uint32_t m = v & 0xFF; m; m &= m - 1) {
             const int c = __builtin_ctz(m);
-            ws.arena[cursor[visitRank(v, c) * N + c]++] = ray;
+            const uint32_t to = cursor[visitRank(v, c) * N + c]++;
+            ws.arena[to] = ray;
+            ws.arenaEntry[to] = entries[liveIndex[c] * K];
         }
     }
     int pushed = 0;
@@ -387,10 +381,7 @@ inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWor
         for (int c = N - 1; c >= 0; --c) {
             const int l = rank * N + c;
             if (listSize[l] == 0) continue;
-            const NodeRef child = node.child[c];
-            const bool recheck = rank > 0 && child.isLeaf();
-            push[pushed++] = {child, listBegin[l], listBegin[l] + listSize[l], newTop,
-                              recheck ? e.ref.index() * N + uint32_t(c) : kNoRecheck};
+            push[pushed++] = {node.child[c], listBegin[l], listBegin[l] + listSize[l], newTop, rank > 0};
         }
     }
     return pushed;
@@ -459,6 +450,23 @@ inline void traceListSingly(const SceneView<N>& scene, const Leaves& leaves, con
     }
 }
 
+/// Keeps, in order, the rays of a list that still enter its node: those whose hit so far (found
+/// under a nearer sibling) is not nearer than their entry (the box test's own culling, as a
+/// single-ray traversal does when it pops the node; occluded rays have tfar = -inf). Returns the
+/// list's new end. Without it such rays went on to the node's children, or to its leaf, each tested
+/// and culled there.
+inline uint32_t dropCulledRays(const StreamEntry& e, StreamWorkspace& ws) {
+    uint32_t kept = e.begin;
+    for (uint32_t at = e.begin; at < e.end; ++at) {
+        const int32_t ray = ws.arena[at];
+        const float entry = ws.arenaEntry[at];
+        ws.arena[kept] = ray;
+        ws.arenaEntry[kept] = entry;
+        kept += entry <= ws.tfar[ray] * kRobustFarScale ? 1 : 0;
+    }
+    return kept;
+}
+
 template <int N, int K, bool AnyHit, StreamOrder Order, class Leaves>
 inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t n, StreamWorkspace& ws) {
     const Leaves leaves{scene.leaves};
@@ -466,12 +474,14 @@ inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t 
     int sp = 0;
     ws.reserveArena(n + K);
     for (size_t i = 0; i < n; ++i) ws.arena[i] = int32_t(i);
-    stack[sp++] = {scene.root, 0, uint32_t(n), uint32_t(n), kNoRecheck};
+    stack[sp++] = {scene.root, 0, uint32_t(n), uint32_t(n), false};
     while (sp > 0) {
-        const StreamEntry e = stack[--sp];
+        StreamEntry e = stack[--sp];
+        if (e.afterSibling) e.end = dropCulledRays(e, ws);
+        if (e.end == e.begin) continue;
         if (e.end - e.begin < (e.ref.isLeaf() ? kSingleRayLeafListSize : kSingleRayListSize))
             traceListSingly<N, AnyHit>(scene, leaves, rays, e, ws);
-        else if (e.ref.isLeaf()) traceStreamLeaf<N, K, AnyHit>(scene, leaves, rays, e, ws);
+        else if (e.ref.isLeaf()) traceStreamLeaf<K, AnyHit>(leaves, rays, e, ws);
         else if constexpr (Order == StreamOrder::ByList) sp += splitByList<N, K>(scene, e, ws, stack + sp);
         else sp += splitByRay<N, K>(scene, e, ws, stack + sp);
     }

@@ -67,9 +67,9 @@ template <> struct Types<16> { using Float = vfloat16; using Int = vint16; using
 
 /// Writes the lanes of `values` selected by `mask` contiguously to out (which has room for all lanes);
 /// returns how many.
-template <class I, class B>
-inline int compressStore(int32_t* out, const I& values, const B& mask) {
-    alignas(64) int32_t v[sizeof(I) / 4];
+template <class T, class V, class B>
+inline int compressStore(T* out, const V& values, const B& mask) {
+    alignas(64) T v[sizeof(V) / sizeof(T)];
     values.store(v);
     int n = 0;
     for (uint32_t bits = movemask(mask); bits; bits &= bits - 1) out[n++] = v[__builtin_ctz(bits)];

@@ -94,6 +94,10 @@ inline int compressStore(int32_t* out, vint16 values, vbool16 mask) {
     _mm512_storeu_si512(out, _mm512_maskz_compress_epi32(mask.m, values.m));
     return __builtin_popcount(mask.m);
 }
+inline int compressStore(float* out, vfloat16 values, vbool16 mask) {
+    _mm512_storeu_ps(out, _mm512_maskz_compress_ps(mask.m, values.m));
+    return __builtin_popcount(mask.m);
+}
 inline float reduceMin(vfloat16 a) { return _mm512_reduce_min_ps(a.m); }
 /// Lane i: the least lane of v[i] (sixteen reductions at once: 128-bit blocks folded twice, then a
 /// 4x4 transpose in each block and the blocks put in order).
