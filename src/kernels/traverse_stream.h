@@ -455,9 +455,20 @@ inline void traceListSingly(const SceneView<N>& scene, const Leaves& leaves, con
 /// single-ray traversal does when it pops the node; occluded rays have tfar = -inf). Returns the
 /// list's new end. Without it such rays went on to the node's children, or to its leaf, each tested
 /// and culled there.
+template <int K>
 inline uint32_t dropCulledRays(const StreamEntry& e, StreamWorkspace& ws) {
-    uint32_t kept = e.begin;
-    for (uint32_t at = e.begin; at < e.end; ++at) {
+    using F = vfloat<K>;
+    uint32_t kept = e.begin, at = e.begin;
+    // Whole chunks: the compressed stores write K entries from `kept`, which is no further than `at`,
+    // so they overwrite only what has been read.
+    for (; at + K <= e.end; at += K) {
+        const ListChunk<K> chunk = loadChunk<K>(&ws.arena[at], K);
+        const F entry = F::loadu(&ws.arenaEntry[at]);
+        const vbool<K> keep = entry <= chunk.fetch(ws.tfar) * F(kRobustFarScale);
+        compressStore(&ws.arenaEntry[kept], entry, keep);
+        kept += uint32_t(compressStore(&ws.arena[kept], chunk.idx, keep));
+    }
+    for (; at < e.end; ++at) {
         const int32_t ray = ws.arena[at];
         const float entry = ws.arenaEntry[at];
         ws.arena[kept] = ray;
@@ -477,7 +488,7 @@ inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t 
     stack[sp++] = {scene.root, 0, uint32_t(n), uint32_t(n), false};
     while (sp > 0) {
         StreamEntry e = stack[--sp];
-        if (e.afterSibling) e.end = dropCulledRays(e, ws);
+        if (e.afterSibling) e.end = dropCulledRays<K>(e, ws);
         if (e.end == e.begin) continue;
         if (e.end - e.begin < (e.ref.isLeaf() ? kSingleRayLeafListSize : kSingleRayListSize))
             traceListSingly<N, AnyHit>(scene, leaves, rays, e, ws);
