@@ -14,7 +14,7 @@ struct StreamWorkspace {
     int32_t *kx = nullptr, *ky = nullptr, *kz = nullptr, *prim = nullptr;
     int32_t* visits = nullptr;  ///< per ray of the list being split: its children and their order
     /// Per ray of the list being split, kMaxStreamNodeWidth of them: its entries into the children
-    /// (chunk by chunk: K rays' entries into the first child, then into the second, ...).
+    /// (chunk by chunk: K rays' entries into the child in slot 0, then slot 1, ...).
     float* childEntries = nullptr;
     uint32_t* rayOf = nullptr;  ///< stream slot -> index in the caller's array
     uint32_t *userGeomId = nullptr, *userPrimId = nullptr;  ///< the ids of closest hits on user primitives

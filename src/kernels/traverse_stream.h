@@ -322,7 +322,7 @@ inline int visitRank(uint32_t visits, int child) { return int(visits >> (8 + 3 *
 /// finishes the subtree of its nearest child before any list holds it for its next.
 template <int N, int K>
 inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWorkspace& ws, StreamEntry* push) {
-    static_assert(N <= 8 && N <= kMaxStreamNodeWidth, "the visit code and childEntries have room for eight children");
+    static_assert(N <= kMaxStreamNodeWidth, "the visit code and childEntries have room for eight children");
     using F = vfloat<K>;
     using I = vint<K>;
     const F inf(__builtin_huge_valf());
@@ -334,7 +334,7 @@ inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWor
         const ListChunk<K> chunk = loadChunk<K>(&ws.arena[at], e.end - at);
         F dist[N];
         childEntries<N, K>(node, live, liveCount, ws, chunk, dist);
-        for (int c = 0; c < liveCount; ++c) dist[c].store(&ws.childEntries[(at - e.begin) * N + c * K]);
+        for (int c = 0; c < liveCount; ++c) dist[c].store(&ws.childEntries[(at - e.begin) * N + live[c] * K]);
         I visits(0);
         for (int c = 0; c < liveCount; ++c) {
             const vbool<K> enters = dist[c] < inf;
@@ -363,8 +363,6 @@ inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWor
         newTop += listSize[l];
     }
     ws.reserveArena(newTop + K);  // K of slack for the vector loads of the next level
-    int liveIndex[N];
-    for (int c = 0; c < liveCount; ++c) liveIndex[live[c]] = c;
     for (uint32_t j = 0; j < count; ++j) {
         const uint32_t v = uint32_t(ws.visits[j]);
         const int32_t ray = ws.arena[e.begin + j];
@@ -373,7 +371,7 @@ inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWor
             const int c = __builtin_ctz(m);
             const uint32_t to = cursor[visitRank(v, c) * N + c]++;
             ws.arena[to] = ray;
-            ws.arenaEntry[to] = entries[liveIndex[c] * K];
+            ws.arenaEntry[to] = entries[c * K];
         }
     }
     int pushed = 0;
@@ -468,6 +466,7 @@ inline uint32_t dropCulledRays(const StreamEntry& e, StreamWorkspace& ws) {
         compressStore(&ws.arenaEntry[kept], entry, keep);
         kept += uint32_t(compressStore(&ws.arena[kept], chunk.idx, keep));
     }
+    // The rest one by one: a whole vector stored there could reach past the list into the next one.
     for (; at < e.end; ++at) {
         const int32_t ray = ws.arena[at];
         const float entry = ws.arenaEntry[at];
