@@ -369,9 +369,9 @@ void expectSameTree(const SceneAccel<8>& a, const SceneAccel<8>& b) {
 }
 
 /// The same tree whatever the thread count: one thread, then all of them (the build is parallel above
-/// 4096 primitives, which the test mesh exceeds).
-void expectSameTreeOnOneAndAllThreads(const BvhBuildConfig& config) {
-    TriangleMesh mesh = testMesh();
+/// 4096 primitives, which the test mesh exceeds; the dragon's 100k exceed the sizes from which
+/// partitions run in parallel and splits are chosen on samples).
+void expectSameTreeOnOneAndAllThreads(const TriangleMesh& mesh, const BvhBuildConfig& config) {
     ASSERT_GT(mesh.triangles.size(), 4096u);
     std::optional<SceneAccel<8>> a;
     {
@@ -383,8 +383,13 @@ void expectSameTreeOnOneAndAllThreads(const BvhBuildConfig& config) {
 }
 
 TEST(Bvh, BuildIsDeterministic) {
-    expectSameTreeOnOneAndAllThreads(SceneAccel<8>::defaultConfig());
-    expectSameTreeOnOneAndAllThreads(highConfig<8>());
+    expectSameTreeOnOneAndAllThreads(testMesh(), SceneAccel<8>::defaultConfig());
+    expectSameTreeOnOneAndAllThreads(testMesh(), highConfig<8>());
+    auto dir = sharedScenesDir();
+    if (!dir) GTEST_SKIP() << "the dragon needs ../shared/scenes (or WIDERAY_SCENES)";
+    const TriangleMesh dragon = loadMesh(*dir / "stanford-dragon-100k/dragon_100k.ply");
+    expectSameTreeOnOneAndAllThreads(dragon, SceneAccel<8>::defaultConfig());
+    expectSameTreeOnOneAndAllThreads(dragon, highConfig<8>());
 }
 
 /// The SSE sweep over three axes at once picks the plane the scalar sweep per axis picks: least cost

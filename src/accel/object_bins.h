@@ -159,9 +159,10 @@ struct ObjectBins {
 
     BuildBox box(int axis, int bin) const { return boxes.box(axis, bin); }
 
-    /// Bins the references and writes each one's bins into it (BuildRef::bins).
-    void add(BuildRef* refs, size_t refCount, const ObjectBinMapping& mapping) {
-        addInterleaved(*this, refCount, [&](ObjectBins& bins, size_t i) { bins.add(refs[i], mapping); });
+    /// Bins refs[0], refs[stride], refs[2 * stride], ... (refCount of them) and writes each one's bins
+    /// into it (BuildRef::bins).
+    void add(BuildRef* refs, size_t refCount, size_t stride, const ObjectBinMapping& mapping) {
+        addInterleaved(*this, refCount, [&](ObjectBins& bins, size_t i) { bins.add(refs[i * stride], mapping); });
     }
 
     void add(BuildRef& ref, const ObjectBinMapping& mapping) {
@@ -180,6 +181,12 @@ struct ObjectBins {
         boxes.merge(other.boxes, count);
         for (int b = 0; b < count; ++b)
             for (int a = 0; a < 3; ++a) counts[b][a] += other.counts[b][a];
+    }
+
+    /// Counts each reference `factor` times: a sample's bins, scaled to the node's size.
+    void scaleCounts(uint32_t factor) {
+        for (int b = 0; b < count; ++b)
+            for (int a = 0; a < 3; ++a) counts[b][a] *= factor;
     }
 
     ObjectSplit bestSplit(const ObjectBinMapping& mapping, uint32_t blockShift) const {
