@@ -6,7 +6,6 @@
 #include <cstddef>
 #include <memory>
 #include <new>
-#include <optional>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -247,34 +246,39 @@ private:
         objectBins.scaleCounts(objectStride);
         ObjectSplit object = objectBins.bestSplit(objectMapping, blockShift());
         if (objectStride > 1 && object.axis >= 0) measureObjectSplit(range, objectMapping, object);
-        SpatialSplit spatial;
-        std::optional<SpatialBinMapping> spatialMapping;
+        // A leaf wins where its cost is no more than that of the split of least cost.
+        const float area = range.bounds.halfArea();
+        const float leafCost = config_.intersectionCost * float((count + blockSize() - 1) / blockSize());
+        auto leafWins = [&](float bestCost) {
+            const float splitCost = bestCost < std::numeric_limits<float>::infinity() && area > 0
+                                        ? config_.traversalCost + config_.intersectionCost * bestCost / area
+                                        : std::numeric_limits<float>::infinity();
+            return fitsLeaf && leafCost <= splitCost;
+        };
         if (splitter_ && range.spare() > 0 && count >= minSpatialSplitRefs(config_)) {
             BuildBox overlap = object.left;
             overlap.intersect(object.right);
             const float overlapArea = overlap.halfArea();
             if (object.axis < 0 || (overlapArea > config_.spatialOverlap * rootHalfArea_ &&
-                                    overlapArea > config_.spatialNodeOverlap * range.bounds.halfArea())) {
-                spatialMapping.emplace(range.bounds, config_.spatialBinCount);
-                spatialMapping->splittableAxes = spatialAxesToBin(range, *spatialMapping, object.cost);
-                if (spatialMapping->splittableAxes != 0) {
-                    SpatialBins spatialBins(spatialMapping->count);
-                    binSpatially(range, *spatialMapping, spatialBins, 1);
-                    spatial = spatialBins.bestSplit(*spatialMapping, blockShift());
+                                    overlapArea > config_.spatialNodeOverlap * area)) {
+                SpatialBinMapping mapping(range.bounds, config_.spatialBinCount);
+                mapping.splittableAxes = spatialAxesToBin(range, mapping, object.cost);
+                SpatialSplit spatial;
+                if (mapping.splittableAxes != 0) {
+                    SpatialBins spatialBins(mapping.count);
+                    binSpatially(range, mapping, spatialBins, 1);
+                    spatial = spatialBins.bestSplit(mapping, blockShift());
                 }
-                if (spatial.axis >= 0 && spatial.leftCount + spatial.rightCount - count > range.spare()) spatial = {};
+                const bool withinBudget = spatial.leftCount + spatial.rightCount - count <= range.spare();
+                if (spatial.axis >= 0 && withinBudget && spatial.cost < object.cost) {
+                    if (leafWins(spatial.cost)) return false;
+                    splitSpatially(range, spatial, mapping, left, right);
+                    return true;
+                }
             }
         }
-
-        const float bestCost = std::min(object.cost, spatial.cost);
-        const float area = range.bounds.halfArea();
-        const float leafCost = config_.intersectionCost * float((count + blockSize() - 1) / blockSize());
-        const float splitCost = bestCost < std::numeric_limits<float>::infinity() && area > 0
-                                    ? config_.traversalCost + config_.intersectionCost * bestCost / area
-                                    : std::numeric_limits<float>::infinity();
-        if (fitsLeaf && leafCost <= splitCost) return false;
-        if (spatial.cost < object.cost) splitSpatially(range, spatial, *spatialMapping, left, right);
-        else if (object.axis >= 0 && count >= config_.parallelPartitionMinRefs) splitObjectsInParallel(range, object, left, right);
+        if (leafWins(object.cost)) return false;
+        if (object.axis >= 0 && count >= config_.parallelPartitionMinRefs) splitObjectsInParallel(range, object, left, right);
         else if (object.axis >= 0) splitObjects(range, object, left, right);
         else splitAtMedian(range, left, right);
         return true;
