@@ -39,12 +39,13 @@ constexpr uint32_t kSpatialSampleMaxSize = 16384;
 // axis's. 1.1 or 1.2: Sponza's SAH cost 20.64 or 20.61; the best axis alone: 20.69.
 constexpr float kSpatialAxisSlack = 1.5f;
 // Nodes of at least kObjectSampleMinRefs references choose their object split's plane on a sample,
-// every kObjectSampleStride-th reference; then one pass bins them all for the partition and measures
-// both sides (measureObjectSplit). Measured: the high build of the kitchen 5% faster (ABBA, 5 rounds),
-// its tree and every shared mesh's the same as from binning all; the greedy SAH's top splits are
-// fragile, and every 8th reference chose other planes there (the kitchen's high build's SAH cost
-// 9.91 -> 10.06, its fast build's 11.26 -> 10.14; every 4th: 10.89).
-constexpr uint32_t kObjectSampleMinRefs = 1u << 16;
+// every kObjectSampleStride-th reference; one pass then bins them all for the partition and measures
+// both sides (measureObjectSplit). Measured on the shared meshes (`wideray info`): SAH costs within
+// 0.3% of binning all (the kitchen's high build 9.91 -> 9.93, Sponza's fast build 22.60 -> 22.21), the
+// kitchen's high build 8% faster (ABBA, 5 rounds: 5% from 2^16 references on, 3% more from 2^14). A
+// sparser sample chose worse planes near the root, where the greedy SAH is fragile (every 8th
+// reference from 2^16 on: the kitchen's high build's SAH cost 10.06).
+constexpr uint32_t kObjectSampleMinRefs = 1u << 14;
 constexpr uint32_t kObjectSampleStride = 4;
 
 /// A node's references: [begin, end) in use, [end, capacityEnd) free for the duplicates that spatial
