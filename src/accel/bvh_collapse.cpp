@@ -251,8 +251,15 @@ private:
         const uint32_t maxMergedBlocks = std::min<uint32_t>(NodeRef::kMaxLeafItems, 4);
         plan.begin = plans_[node.first].begin;
         plan.count = plans_[node.first].count + plans_[node.first + 1].count;
+        // Two leaves cost the same in any number of slots: the loops below have one answer, their first.
+        const bool twoLeaves = binary_.nodes[node.first].isLeaf() && binary_.nodes[node.first + 1].isLeaf();
+        const float bothLeaves = l.cost[1] + r.cost[1];
         float inner = std::numeric_limits<float>::infinity();
-        for (int k = 1; k < N; ++k)
+        if (twoLeaves) {
+            inner = bothLeaves;
+            plan.nodeSplit = 1;
+        }
+        for (int k = 1; k < N && !twoLeaves; ++k)
             if (l.cost[k] + r.cost[N - k] < inner) {
                 inner = l.cost[k] + r.cost[N - k];
                 plan.nodeSplit = uint8_t(k);
@@ -264,6 +271,13 @@ private:
         plan.leaf = leaf <= inner;
         forest.cost[1] = plan.leaf ? leaf : inner;
         plan.split[1] = 0;
+        if (twoLeaves) {
+            for (int j = 2; j <= N; ++j) {
+                forest.cost[j] = bothLeaves < forest.cost[1] ? bothLeaves : forest.cost[1];
+                plan.split[j] = bothLeaves < forest.cost[1] ? 1 : 0;
+            }
+            return forest;
+        }
         for (int j = 2; j <= N; ++j) {
             forest.cost[j] = forest.cost[1];
             plan.split[j] = 0;
