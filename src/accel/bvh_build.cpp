@@ -129,6 +129,8 @@ public:
 private:
     uint32_t blockSize() const { return uint32_t(config_.blockSize); }
     uint32_t blockShift() const { return uint32_t(__builtin_ctz(blockSize())); }
+    /// The blocks a leaf of `count` references takes, as the SAH charges them.
+    float blocksOf(uint32_t count) const { return float((count + blockSize() - 1) >> blockShift()); }
 
     BuildRange measured(uint32_t begin, uint32_t end, uint32_t capacityEnd) const {
         RangeBounds b;
@@ -243,13 +245,13 @@ private:
         const ObjectBinMapping objectMapping(range.centroids, count, config_.binCount);
         ObjectBins objectBins(objectMapping.count);
         const uint32_t objectStride = count >= kObjectSampleMinRefs ? kObjectSampleStride : 1;
-        binObjects(range, objectMapping, objectBins, objectStride);
+        binEvery(objectStride, range, objectBins, objectMapping);
         objectBins.scaleCounts(objectStride);
         ObjectSplit object = objectBins.bestSplit(objectMapping, blockShift());
         if (objectStride > 1 && object.axis >= 0) measureObjectSplit(range, objectMapping, object);
         // A leaf wins where its cost is no more than that of the split of least cost.
         const float area = range.bounds.halfArea();
-        const float leafCost = config_.intersectionCost * float((count + blockSize() - 1) / blockSize());
+        const float leafCost = config_.intersectionCost * blocksOf(count);
         auto leafWins = [&](float bestCost) {
             const float splitCost = bestCost < std::numeric_limits<float>::infinity() && area > 0
                                         ? config_.traversalCost + config_.intersectionCost * bestCost / area
@@ -267,7 +269,7 @@ private:
                 SpatialSplit spatial;
                 if (mapping.splittableAxes != 0) {
                     SpatialBins spatialBins(mapping.count);
-                    binSpatially(range, mapping, spatialBins, 1);
+                    binEvery(1, range, spatialBins, mapping, *splitter_);
                     spatial = spatialBins.bestSplit(mapping, blockShift());
                 }
                 const bool withinBudget = spatial.leftCount + spatial.rightCount - count <= range.spare();
@@ -310,29 +312,21 @@ private:
                     else acc.right.grow(box), ++acc.rightCount;
                 }
             });
-        auto blocks = [&](uint32_t n) { return float((n + blockSize() - 1) >> blockShift()); };
         split.left = sides.left;
         split.right = sides.right;
         split.leftCount = sides.leftCount;
         split.rightCount = sides.rightCount;
-        split.cost = sides.left.halfArea() * blocks(sides.leftCount) + sides.right.halfArea() * blocks(sides.rightCount);
+        split.cost = sides.left.halfArea() * blocksOf(sides.leftCount) + sides.right.halfArea() * blocksOf(sides.rightCount);
     }
 
-    /// Bins every stride-th reference of the range.
-    void binObjects(const BuildRange& range, const ObjectBinMapping& mapping, ObjectBins& bins, uint32_t stride) {
+    /// Bins every stride-th reference of the range (object or spatial bins; `args` follow the
+    /// references, count and stride in Bins::add).
+    template <class Bins, class... Args>
+    void binEvery(uint32_t stride, const BuildRange& range, Bins& bins, const Args&... args) const {
         reduceRange(
-            0, (range.size() + stride - 1) / stride, bins, [&] { return ObjectBins(mapping.count); },
-            [&](ObjectBins& bins, uint32_t from, uint32_t to) {
-                bins.add(refs_.data() + range.begin + size_t(from) * stride, to - from, stride, mapping);
-            });
-    }
-
-    /// Bins every stride-th reference of the range.
-    void binSpatially(const BuildRange& range, const SpatialBinMapping& mapping, SpatialBins& bins, uint32_t stride) const {
-        reduceRange(
-            0, (range.size() + stride - 1) / stride, bins, [&] { return SpatialBins(mapping.count); },
-            [&](SpatialBins& bins, uint32_t from, uint32_t to) {
-                bins.add(refs_.data() + range.begin + size_t(from) * stride, to - from, stride, mapping, *splitter_);
+            0, (range.size() + stride - 1) / stride, bins, [&] { return Bins(bins.count); },
+            [&](Bins& acc, uint32_t from, uint32_t to) {
+                acc.add(refs_.data() + range.begin + size_t(from) * stride, to - from, stride, args...);
             });
     }
 
@@ -349,7 +343,7 @@ private:
             return mapping.splittableAxes;
         SpatialBins sample(mapping.count);
         const uint32_t stride = std::max(kSpatialSampleStride, range.size() / kSpatialSampleMaxSize);
-        binSpatially(range, mapping, sample, stride);
+        binEvery(stride, range, sample, mapping, *splitter_);
         sample.scaleCounts(stride);
         const SpatialSplit best = sample.bestSplit(mapping, blockShift());
         int axes = 0;

@@ -258,12 +258,13 @@ private:
         if (twoLeaves) {
             inner = bothLeaves;
             plan.nodeSplit = 1;
+        } else {
+            for (int k = 1; k < N; ++k)
+                if (l.cost[k] + r.cost[N - k] < inner) {
+                    inner = l.cost[k] + r.cost[N - k];
+                    plan.nodeSplit = uint8_t(k);
+                }
         }
-        for (int k = 1; k < N && !twoLeaves; ++k)
-            if (l.cost[k] + r.cost[N - k] < inner) {
-                inner = l.cost[k] + r.cost[N - k];
-                plan.nodeSplit = uint8_t(k);
-            }
         inner += config_.traversalCost * area;
         const uint32_t blocks = blocksOf(plan.count);
         const float leaf = blocks <= maxMergedBlocks ? config_.intersectionCost * float(blocks) * area
