@@ -438,7 +438,7 @@ inline void traceListSingly(const SceneView<N>& scene, const Leaves& leaves, con
             state.woop = slotWoop(ws, s);
             occluded = leaves.template single<kBlockSize, AnyHit>(e.ref, state, ray, hit, cost);
         } else {
-            occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(scene, e.ref, ray, slotState(ws, s),
+            occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves, true>(scene, e.ref, ray, slotState(ws, s),
                                                                                         hit, cost);
         }
         if (ws.countCost) {
