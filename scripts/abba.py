@@ -25,7 +25,7 @@ def medians(binary, benchmark_filter, cpu, env):
         subprocess.run(["taskset", "-c", cpu, binary, "--benchmark_filter=" + benchmark_filter,
                         "--benchmark_repetitions=3", "--benchmark_report_aggregates_only=true",
                         "--benchmark_out=" + out.name, "--benchmark_out_format=json"],
-                       env=env, stdout=subprocess.DEVNULL, check=True)
+                       env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
         text = open(out.name).read()
     results = json.loads(text)["benchmarks"] if text else []  # empty where the filter matched nothing
     return {b["run_name"]: b["real_time"] for b in results if b.get("aggregate_name") == "median"}
