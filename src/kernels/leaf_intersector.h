@@ -66,5 +66,12 @@ struct SceneLeafIntersector {
     }
 };
 
+/// Asks for what a traversal reads first at `child`: its node, or its leaf's triangle blocks.
+template <int N>
+[[gnu::always_inline]] inline void prefetchChild(const SceneView<N>& scene, NodeRef child) {
+    if (child.isLeaf()) SceneLeafIntersector<N>{scene.leaves}.prefetch(child);
+    else prefetchNode(scene.nodes, child);
+}
+
 } // namespace WIDERAY_ISA
 } // namespace wideray

@@ -199,8 +199,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
                 if (node.child[i].bits == NodeRef::empty().bits) continue;
                 const F entry = packetChildEntry<N, K>(node, i, p, h.t, active);
                 if (none(entry < inf)) continue;
-                if (node.child[i].isLeaf()) leaves.prefetch(node.child[i]);
-                else prefetchNode(scene.nodes, node.child[i]);
+                prefetchChild(scene, node.child[i]);
                 // Ordered by the interval's entry where there is one (a bound on the rays' entries,
                 // without a horizontal minimum per child).
                 float distance = 0.0f;

@@ -79,8 +79,10 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
                 continue;
             }
             ref = pushNearestLast(stack, sp, node, hits, tEntry);  // three or more
-            for (uint32_t rest = hits; rest; rest &= rest - 1)
-                if (node.child[__builtin_ctz(rest)].bits != ref.bits) pushed(node.child[__builtin_ctz(rest)]);
+            for (uint32_t rest = hits; rest; rest &= rest - 1) {
+                const NodeRef child = node.child[__builtin_ctz(rest)];
+                if (child.bits != ref.bits) pushed(child);
+            }
         }
         if (leaf(ref)) return;
     pop:;
@@ -107,10 +109,7 @@ inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray
         },
         cost,
         [&](NodeRef child) __attribute__((always_inline)) {
-            if constexpr (PrefetchPushed) {
-                if (child.isLeaf()) leaves.prefetch(child);
-                else prefetchNode(scene.nodes, child);
-            }
+            if constexpr (PrefetchPushed) prefetchChild(scene, child);
         });
     return occluded;
 }

@@ -240,21 +240,14 @@ inline void childEntries(const WideNode<N>& node, const int* live, int liveCount
     for (int c = 0; c < liveCount; ++c) dist[c] = packetChildEntry<N, K>(node, live[c], p, h.t, active);
 }
 
-/// Asks for what a pushed list reads first: its node, or its leaf's triangle blocks. Most lists are
-/// popped after a nearer sibling's subtree, which gives the prefetch time to land; without it the first
-/// load of a leaf block was a third of the single-ray finish's samples (`perf annotate`, Sponza's
-/// bounce rays). Measured (`wideray_perf`, one thread, 512x512, ABBA on one CPU, 6-10 rounds, against
-/// `single` as the control): `stream` 1-9% faster on Sponza's diffuse rays from inside and 3-13% on its
-/// bounce rays in three runs, 4-5% on the kitchen's; faster in every run, by less than this machine's
-/// noise in some. (Session 8 tried it without a control and could not tell.)
-template <int N>
-[[gnu::always_inline]] inline void prefetchList(const SceneView<N>& scene, NodeRef ref) {
-    if (ref.isLeaf()) SceneLeafIntersector<N>{scene.leaves}.prefetch(ref);
-    else prefetchNode(scene.nodes, ref);
-}
-
 /// Splits the list of an inner node into one list per child (each as large as the list plus K of
-/// slack for the vector loads of the next level) and pushes them, the one to visit first last.
+/// slack for the vector loads of the next level) and pushes them, the one to visit first last, each
+/// with its node or leaf blocks prefetched (`prefetchChild`): most lists are popped after a nearer
+/// sibling's subtree, which gives the prefetch time to land; without it the first load of a leaf block
+/// was a third of the single-ray finish's samples (`perf annotate`, Sponza's bounce rays). Measured
+/// (`wideray_perf`, one thread, 512x512, ABBA on one CPU, 6-10 rounds, `single` as the control):
+/// `stream` 1-9% faster on Sponza's diffuse rays from inside and 3-13% on its bounce rays in three
+/// runs, 4-5% on the kitchen's.
 /// Returns how many. The children are visited in the order of the nearest entry among their rays,
 /// and where that ties, first the child that most rays enter before any other. The rays of a list
 /// visit the children in the lists' order, not each in its own nearest-first order, and a ray that
@@ -321,7 +314,7 @@ inline int splitByList(const SceneView<N>& scene, const StreamEntry& e, StreamWo
     for (int k = 0; k < childCount; ++k) {  // the last visited first, so that the first is popped first
         const int c = order[childCount - 1 - k].c;
         push[k] = {node.child[live[c]], top + c * region, childEnd[c], newTop, k < childCount - 1};
-        prefetchList(scene, push[k].ref);
+        prefetchChild(scene, push[k].ref);
     }
     return childCount;
 }
@@ -394,7 +387,7 @@ inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWor
             const int l = rank * N + c;
             if (listSize[l] == 0) continue;
             push[pushed++] = {node.child[c], listBegin[l], listBegin[l] + listSize[l], newTop, rank > 0};
-            prefetchList(scene, node.child[c]);
+            prefetchChild(scene, node.child[c]);
         }
     }
     return pushed;
