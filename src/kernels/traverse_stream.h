@@ -398,6 +398,17 @@ inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWor
 /// rays switch later, as their single-ray test needs no set-up (measured on bounce rays, Sponza).
 constexpr uint32_t kSingleRayListSize = 8, kSingleRayLeafListSize = 4;
 
+/// Asks for every child of a node whose list of rays is about to be traced singly: its rays go on to
+/// different children, deep in the tree where no other ray of the stream has been, and one ray after
+/// another each waited for its own. Asked for at once, those misses overlap: `stream` 5-7% faster on
+/// Sponza's diffuse and bounce rays from inside, high build, `single` as the control within 1% (6 ABBA
+/// rounds); 2-6% on the fast build and the kitchen's (noisier). Lists of one ray asking too: 1-4%
+/// more (5 rounds on each build).
+template <int N>
+inline void prefetchAllChildren(const SceneView<N>& scene, const WideNode<N>& node) {
+    for (int c = 0; c < N; ++c) prefetchChild(scene, node.child[c]);  // an empty slot is a leaf of no blocks
+}
+
 /// The closest hit so far of a stream slot, as the single-ray kernel keeps it.
 inline Hit slotHit(const StreamWorkspace& ws, int32_t s) {
     if (ws.prim[s] != kNoPrim) return {ws.tfar[s], ws.u[s], ws.v[s], uint32_t(ws.prim[s]), 0};
@@ -497,9 +508,10 @@ inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t 
         StreamEntry e = stack[--sp];
         if (e.afterSibling) e.end = dropCulledRays<K>(e, ws);
         if (e.end == e.begin) continue;
-        if (e.end - e.begin < (e.ref.isLeaf() ? kSingleRayLeafListSize : kSingleRayListSize))
+        if (e.end - e.begin < (e.ref.isLeaf() ? kSingleRayLeafListSize : kSingleRayListSize)) {
+            if (!e.ref.isLeaf()) prefetchAllChildren(scene, scene.nodes[e.ref.index()]);
             traceListSingly<N, AnyHit>(scene, leaves, rays, e, ws);
-        else if (e.ref.isLeaf()) traceStreamLeaf<K, AnyHit>(leaves, rays, e, ws);
+        } else if (e.ref.isLeaf()) traceStreamLeaf<K, AnyHit>(leaves, rays, e, ws);
         else if constexpr (Order == StreamOrder::ByList) sp += splitByList<N, K>(scene, e, ws, stack + sp);
         else sp += splitByRay<N, K>(scene, e, ws, stack + sp);
     }
