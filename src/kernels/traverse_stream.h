@@ -403,7 +403,8 @@ constexpr uint32_t kSingleRayListSize = 8, kSingleRayLeafListSize = 4;
 /// another each waited for its own. Asked for at once, those misses overlap: `stream` 5-7% faster on
 /// Sponza's diffuse and bounce rays from inside, high build, `single` as the control within 1% (6 ABBA
 /// rounds); 2-6% on the fast build and the kitchen's (noisier). Lists of one ray asking too: 1-4%
-/// more (5 rounds on each build).
+/// more (5 rounds on each build). Any-hit rays stop at their first occluder, and Sponza's shadow
+/// streams got 2-7% slower with it (two alternated `wideray bench` runs), so they do not ask.
 template <int N>
 inline void prefetchAllChildren(const SceneView<N>& scene, const WideNode<N>& node) {
     for (int c = 0; c < N; ++c) prefetchChild(scene, node.child[c]);  // an empty slot is a leaf of no blocks
@@ -509,7 +510,7 @@ inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t 
         if (e.afterSibling) e.end = dropCulledRays<K>(e, ws);
         if (e.end == e.begin) continue;
         if (e.end - e.begin < (e.ref.isLeaf() ? kSingleRayLeafListSize : kSingleRayListSize)) {
-            if (!e.ref.isLeaf()) prefetchAllChildren(scene, scene.nodes[e.ref.index()]);
+            if (!AnyHit && !e.ref.isLeaf()) prefetchAllChildren(scene, scene.nodes[e.ref.index()]);
             traceListSingly<N, AnyHit>(scene, leaves, rays, e, ws);
         } else if (e.ref.isLeaf()) traceStreamLeaf<K, AnyHit>(leaves, rays, e, ws);
         else if constexpr (Order == StreamOrder::ByList) sp += splitByList<N, K>(scene, e, ws, stack + sp);
