@@ -242,13 +242,8 @@ inline void childEntries(const WideNode<N>& node, const int* live, int liveCount
 
 /// Splits the list of an inner node into one list per child (each as large as the list plus K of
 /// slack for the vector loads of the next level) and pushes them, the one to visit first last, each
-/// with its node or leaf blocks prefetched (`prefetchChild`): most lists are popped after a nearer
-/// sibling's subtree, which gives the prefetch time to land; without it the first load of a leaf block
-/// was a third of the single-ray finish's samples (`perf annotate`, Sponza's bounce rays). Measured
-/// (`wideray_perf`, one thread, 512x512, ABBA on one CPU, 6-10 rounds, `single` as the control):
-/// `stream` 1-9% faster on Sponza's diffuse rays from inside and 3-13% on its bounce rays in three
-/// runs, 4-5% on the kitchen's.
-/// Returns how many. The children are visited in the order of the nearest entry among their rays,
+/// with its node or leaf blocks prefetched (`prefetchChild`, see the end). Returns how many.
+/// The children are visited in the order of the nearest entry among their rays,
 /// and where that ties, first the child that most rays enter before any other. The rays of a list
 /// visit the children in the lists' order, not each in its own nearest-first order, and a ray that
 /// visits a farther child before its nearest finds hits there that the nearest would have culled;
@@ -257,7 +252,11 @@ inline void childEntries(const WideNode<N>& node, const int* live, int liveCount
 /// high build, the same process, two runs): bounce rays from inside Sponza visit 14.6 -> 13.1 nodes
 /// and 4.9 -> 3.8 leaves per ray and trace 14-16% faster, the kitchen's 1-4%; diffuse rays -4% to +6%.
 /// (The child most rays enter first, before the nearest entry: bounce rays as fast, diffuse rays
-/// 1-9% slower.)
+/// 1-9% slower.) The prefetch: most lists are popped after a nearer sibling's subtree, which gives it
+/// time to land; without it the first load of a leaf block was a third of the single-ray finish's
+/// samples (`perf annotate`, Sponza's bounce rays). Measured (`wideray_perf`, one thread, 512x512,
+/// ABBA on one CPU, 6-10 rounds, `single` as the control): `stream` 1-9% faster on Sponza's diffuse
+/// rays from inside and 3-13% on its bounce rays in three runs, 4-5% on the kitchen's.
 template <int N, int K>
 inline int splitByList(const SceneView<N>& scene, const StreamEntry& e, StreamWorkspace& ws, StreamEntry* push) {
     using F = vfloat<K>;
