@@ -28,10 +28,9 @@ constexpr int kNodeSimdWidth = N < kMaxWidth ? N : kMaxWidth;
 /// stops: a pushed subtree is then never culled when popped, and entry distances are not computed.
 /// Callers mark `leaf` always_inline: as a call it costs a vzeroupper and the node test's set-up again
 /// after every leaf.
-/// `pushed(ref)` is called for each child pushed to be visited later (the caller may prefetch it).
-template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn, class PushedFn>
+template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn>
 inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, const TfarFn& tfar,
-                         const LeafFn& leaf, TraversalCost& cost, const PushedFn& pushed) {
+                         const LeafFn& leaf, TraversalCost& cost) {
     struct Entry {
         NodeRef ref;
         float distance;  ///< where the ray enters the subtree's box
@@ -60,11 +59,7 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
                 continue;
             }
             if constexpr (!Ordered) {
-                for (; mask; mask &= mask - 1) {
-                    const int i = __builtin_ctz(mask);
-                    stack[sp++] = {node.child[i], 0.0f};
-                    pushed(node.child[i]);
-                }
+                for (; mask; mask &= mask - 1) stack[sp++] = {node.child[__builtin_ctz(mask)], 0.0f};
                 ref = node.child[first];
                 continue;
             }
@@ -74,15 +69,10 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
                 const bool secondNearer = tEntry[second] < tEntry[first];
                 const int nearer = secondNearer ? second : first, farther = secondNearer ? first : second;
                 stack[sp++] = {node.child[farther], tEntry[farther]};
-                pushed(node.child[farther]);
                 ref = node.child[nearer];
                 continue;
             }
             ref = pushNearestLast(stack, sp, node, hits, tEntry);  // three or more
-            for (uint32_t rest = hits; rest; rest &= rest - 1) {
-                const NodeRef child = node.child[__builtin_ctz(rest)];
-                if (child.bits != ref.bits) pushed(child);
-            }
         }
         if (leaf(ref)) return;
     pop:;
@@ -92,12 +82,7 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
 /// Closest hit (AnyHit = false) or occlusion (AnyHit = true, returns whether occluded) of one valid
 /// ray in the subtree at `root`; `hit` holds the ray's closest hit so far (a miss at ray.tfar to begin).
 /// Any-hit writes the block that occludes the ray to `lastOccluder`, where given.
-/// PrefetchPushed: the children pushed for later are asked for at once. The stream's single-ray
-/// finish does (its rays are incoherent, and their later children rarely in cache): `stream` 3-5%
-/// faster on Sponza's diffuse and bounce rays from inside (8 ABBA rounds on one CPU, `single` as the
-/// control), 6-12% on the kitchen's (6 rounds). Coherent rays got slower with it (camera rays 2-4%,
-/// session 4), so `single` does not.
-template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector<N>, bool PrefetchPushed = false>
+template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector<N>>
 inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray, const SingleRayState& s, Hit& hit,
                          TraversalCost& cost, uint32_t* lastOccluder = nullptr) {
     const Leaves leaves{scene.leaves, lastOccluder};
@@ -107,10 +92,7 @@ inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray
         [&](NodeRef leaf) __attribute__((always_inline)) {
             return occluded = leaves.template single<TriW, AnyHit>(leaf, s, ray, hit, cost);
         },
-        cost,
-        [&](NodeRef child) __attribute__((always_inline)) {
-            if constexpr (PrefetchPushed) prefetchChild(scene, child);
-        });
+        cost);
     return occluded;
 }
 

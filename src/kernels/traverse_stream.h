@@ -7,11 +7,12 @@
 // triangle. Each ray is culled against its own closest hit. Two orders (StreamOrder): one list per
 // child, children in the order of their nearest ray, or each ray in its own nearest-first order as
 // in Dynamic Ray Stream Traversal, which splits the lists finer. Near the leaves the lists get too
-// short to fill a vector; there each ray finishes the subtree alone with the single-ray kernel
+// short to fill a vector; there the rays finish the subtree as single rays taking turns
 // (the hybrid of Benthin, Wald, Woop, Ernst and Mark 2012, "Combining Single and Packet-Ray Tracing
 // for Arbitrary Ray Distributions on the Intel MIC Architecture", applied to streams). Triangle
 // arithmetic is the reference's, lane by lane or ray by ray.
 #include "kernels/stream_workspace.h"
+#include "kernels/traverse_interleaved.h"
 #include "kernels/traverse_packet.h"
 
 #include "simd/isa_namespace.h"
@@ -393,21 +394,10 @@ inline int splitByRay(const SceneView<N>& scene, const StreamEntry& e, StreamWor
 }
 
 /// Lists shorter than this fill too few lanes of a vector to gain on single rays: their rays finish
-/// the subtree one at a time, with the single-ray kernel's SIMD box and triangle tests. A leaf's
-/// rays switch later, as their single-ray test needs no set-up (measured on bounce rays, Sponza).
+/// the subtree as single rays, with the single-ray kernel's SIMD box and triangle tests, taking turns
+/// (traceInterleaved; 16 instead of 8 since then: within noise). A leaf's rays switch later, as their
+/// single-ray test needs no set-up (measured on bounce rays, Sponza).
 constexpr uint32_t kSingleRayListSize = 8, kSingleRayLeafListSize = 4;
-
-/// Asks for every child of a node whose list of rays is about to be traced singly: its rays go on to
-/// different children, deep in the tree where no other ray of the stream has been, and one ray after
-/// another each waited for its own. Asked for at once, those misses overlap: `stream` 5-7% faster on
-/// Sponza's diffuse and bounce rays from inside, high build, `single` as the control within 1% (6 ABBA
-/// rounds); 2-6% on the fast build and the kitchen's (noisier). Lists of one ray asking too: 1-4%
-/// more (5 rounds on each build). Any-hit rays stop at their first occluder, and Sponza's shadow
-/// streams got 2-7% slower with it (two alternated `wideray bench` runs), so they do not ask.
-template <int N>
-inline void prefetchAllChildren(const SceneView<N>& scene, const WideNode<N>& node) {
-    for (int c = 0; c < N; ++c) prefetchChild(scene, node.child[c]);  // an empty slot is a leaf of no blocks
-}
 
 /// The closest hit so far of a stream slot, as the single-ray kernel keeps it.
 inline Hit slotHit(const StreamWorkspace& ws, int32_t s) {
@@ -427,44 +417,62 @@ inline SingleRayState slotState(const StreamWorkspace& ws, int32_t s) {
     return {makeBoxRay(makeSlabRay(ws.ox[s], ws.oy[s], ws.oz[s], ws.rdx[s], ws.rdy[s], ws.rdz[s])), slotWoop(ws, s)};
 }
 
+/// Writes a stream slot's answer from its single-ray traversal.
+inline void storeSlotResult(StreamWorkspace& ws, int32_t s, const Hit& hit, bool occluded, const TraversalCost& cost) {
+    if (ws.countCost) {
+        ws.costNodes[s] += cost.nodes;
+        ws.costLeaves[s] += cost.leaves;
+        ws.costPrimitives[s] += cost.primitives;
+    }
+    if (occluded) {
+        ws.tfar[s] = -__builtin_huge_valf();
+    } else if (hit.valid()) {
+        ws.tfar[s] = hit.t;
+        ws.u[s] = hit.u;
+        ws.v[s] = hit.v;
+        if (hit.geomId == 0) {
+            ws.prim[s] = int32_t(hit.primId);
+        } else {
+            ws.prim[s] = kNoPrim;
+            ws.userGeomId[s] = hit.geomId;
+            ws.userPrimId[s] = hit.primId;
+        }
+    }
+}
+
+/// The rays of a short list one by one: at a leaf each tests its blocks; at an inner node they
+/// traverse its subtree taking turns (traceInterleaved).
 template <int N, bool AnyHit, class Leaves>
 inline void traceListSingly(const SceneView<N>& scene, const Leaves& leaves, const Ray* rays, const StreamEntry& e,
                             StreamWorkspace& ws) {
+    if (e.ref.isLeaf()) {
+        for (uint32_t at = e.begin; at < e.end; ++at) {
+            const int32_t s = ws.arena[at];
+            if (!(ws.tnear[s] <= ws.tfar[s])) continue;  // occluded already
+            Hit hit = slotHit(ws, s);
+            TraversalCost cost;
+            SingleRayState state;  // the triangle test needs no more than this part
+            state.woop = slotWoop(ws, s);
+            const bool occluded = leaves.template single<kBlockSize, AnyHit>(e.ref, state, rays[ws.rayOf[s]], hit, cost);
+            storeSlotResult(ws, s, hit, occluded, cost);
+        }
+        return;
+    }
+    InterleavedRay<N> traced[kSingleRayListSize];
+    int32_t slot[kSingleRayListSize];
+    int count = 0;
     for (uint32_t at = e.begin; at < e.end; ++at) {
         const int32_t s = ws.arena[at];
         if (!(ws.tnear[s] <= ws.tfar[s])) continue;  // occluded already
-        const Ray& ray = rays[ws.rayOf[s]];
-        Hit hit = slotHit(ws, s);
-        TraversalCost cost;
-        bool occluded;
-        if (e.ref.isLeaf()) {
-            SingleRayState state;  // the triangle test needs no more than this part
-            state.woop = slotWoop(ws, s);
-            occluded = leaves.template single<kBlockSize, AnyHit>(e.ref, state, ray, hit, cost);
-        } else {
-            occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves, true>(scene, e.ref, ray, slotState(ws, s),
-                                                                                        hit, cost);
-        }
-        if (ws.countCost) {
-            ws.costNodes[s] += cost.nodes;
-            ws.costLeaves[s] += cost.leaves;
-            ws.costPrimitives[s] += cost.primitives;
-        }
-        if (occluded) {
-            ws.tfar[s] = -__builtin_huge_valf();
-        } else if (hit.valid()) {
-            ws.tfar[s] = hit.t;
-            ws.u[s] = hit.u;
-            ws.v[s] = hit.v;
-            if (hit.geomId == 0) {
-                ws.prim[s] = int32_t(hit.primId);
-            } else {
-                ws.prim[s] = kNoPrim;
-                ws.userGeomId[s] = hit.geomId;
-                ws.userPrimId[s] = hit.primId;
-            }
-        }
+        InterleavedRay<N>& r = traced[count];
+        r.ray = &rays[ws.rayOf[s]];
+        r.state = slotState(ws, s);
+        r.hit = slotHit(ws, s);
+        r.cost = TraversalCost{};
+        slot[count++] = s;
     }
+    traceInterleaved<N, AnyHit>(scene, leaves, e.ref, traced, count);
+    for (int k = 0; k < count; ++k) storeSlotResult(ws, slot[k], traced[k].hit, traced[k].occluded, traced[k].cost);
 }
 
 /// Keeps, in order, the rays of a list that still enter its node: those whose hit so far (found
@@ -509,7 +517,6 @@ inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t 
         if (e.afterSibling) e.end = dropCulledRays<K>(e, ws);
         if (e.end == e.begin) continue;
         if (e.end - e.begin < (e.ref.isLeaf() ? kSingleRayLeafListSize : kSingleRayListSize)) {
-            if (!AnyHit && !e.ref.isLeaf()) prefetchAllChildren(scene, scene.nodes[e.ref.index()]);
             traceListSingly<N, AnyHit>(scene, leaves, rays, e, ws);
         } else if (e.ref.isLeaf()) traceStreamLeaf<K, AnyHit>(leaves, rays, e, ws);
         else if constexpr (Order == StreamOrder::ByList) sp += splitByList<N, K>(scene, e, ws, stack + sp);
