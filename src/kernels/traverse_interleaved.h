@@ -20,7 +20,7 @@ namespace wideray {
 inline namespace WIDERAY_ISA {
 
 /// One ray's traversal, kept between its turns. The caller sets `ray`, `state`, `hit` (its closest
-/// hit so far) and zeroes `cost`; `occluded` and `hit` are the answers.
+/// hit so far), `next` (the root of its subtree) and zeroes `cost`; `occluded` and `hit` are the answers.
 template <int N>
 struct InterleavedRay {
     struct Entry {
@@ -97,15 +97,14 @@ template <int N, bool AnyHit, class Leaves>
     return false;
 }
 
-/// Closest hits (AnyHit = false) or occlusion of the first `count` rays in the subtree at `root`,
-/// taking turns.
+/// Closest hits (AnyHit = false) or occlusion of the first `count` rays, each in its subtree, taking
+/// turns.
 template <int N, bool AnyHit, int MaxRays, class Leaves>
-inline void traceInterleaved(const SceneView<N>& scene, const Leaves& leaves, NodeRef root,
-                             InterleavedRay<N> (&rays)[MaxRays], int count) {
+inline void traceInterleaved(const SceneView<N>& scene, const Leaves& leaves, InterleavedRay<N> (&rays)[MaxRays],
+                             int count) {
     int live[MaxRays];
     for (int i = 0; i < count; ++i) {
         rays[i].occluded = false;
-        rays[i].next = root;
         rays[i].sp = 0;
         live[i] = i;
     }
