@@ -468,6 +468,7 @@ inline void traceLeafSingly(const Leaves& leaves, const Ray* rays, const StreamE
 template <int N>
 struct InterleavedBatch {
     static constexpr int kCapacity = 8;
+    static_assert(kCapacity >= int(kSingleRayListSize) - 1, "a short list fits an empty batch");
     InterleavedRay<N> traced[kCapacity];
     int32_t slot[kCapacity];
     int count = 0;
