@@ -5,11 +5,12 @@
 // another (the software pipelining of independent pointer chases). Each ray visits what
 // `traverseWide` visits, in its order, with the same box and triangle tests: the hits are the same.
 // The stream's short lists take this way (their rays are deep in the tree, where no other ray of the
-// stream has been, and their reads mostly miss): `stream` 7-11% faster on Sponza's diffuse and bounce
-// rays from inside and 10-13% on the kitchen's, the same on framed meshes whose trees stay in cache
-// (ABBA, 4-5 rounds, `single` as the control). Packets' lanes finishing alone do not: 15-23% slower on
-// incoherent rays from inside Sponza (its rays go on to neighbouring nodes, which are in cache, and
-// a turn reloads the ray's state that a whole traversal keeps in registers).
+// stream has been, and their reads mostly miss): `stream` 7% and 11% faster on Sponza's diffuse and
+// bounce rays from inside (high build; 3% and 10% on the fast build) and 13% and 10% on the kitchen's,
+// the same on framed meshes whose trees stay in cache (ABBA, 4-5 rounds, `single` as the control).
+// Packets' lanes finishing alone do not: 11-23% slower on incoherent rays from inside Sponza (a
+// packet's rays go on to neighbouring nodes, which are in cache, and a turn reloads the ray's state
+// that a whole traversal keeps in registers).
 #include <cstdint>
 
 #include "kernels/traverse_single.h"
