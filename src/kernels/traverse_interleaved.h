@@ -24,10 +24,6 @@ inline namespace WIDERAY_ISA {
 /// hit so far), `next` (the root of its subtree) and zeroes `cost`; `occluded` and `hit` are the answers.
 template <int N>
 struct InterleavedRay {
-    struct Entry {
-        NodeRef ref;
-        float distance;  ///< where the ray enters the subtree's box
-    };
     const Ray* ray;
     SingleRayState state;
     Hit hit;
@@ -35,7 +31,7 @@ struct InterleavedRay {
     bool occluded;
     NodeRef next;  ///< what its next turn reads
     int sp;
-    Entry stack[kStackSize<N> + N];  // left uninitialized: room for pushNearestLast's N stores
+    SingleRayEntry stack[kStackSize<N> + N];  // left uninitialized: room for pushNearestLast's N stores
 };
 
 /// One turn of ray `r`: a node's children tested (the next child chosen, the others pushed) or a leaf
@@ -57,31 +53,8 @@ template <int N, bool AnyHit, class Leaves>
         if constexpr (Ordered) hits = test(node, r.ray->tnear, r.hit.t, tEntry);
         else hits = test.hits(node, r.ray->tnear, r.hit.t);
         if (hits != 0) {
-            const int first = __builtin_ctz(hits);
-            uint32_t rest = hits & (hits - 1);
-            if (rest == 0) {
-                r.next = node.child[first];
-            } else if constexpr (!Ordered) {
-                for (; rest; rest &= rest - 1) {
-                    const NodeRef child = node.child[__builtin_ctz(rest)];
-                    r.stack[r.sp++] = {child, 0.0f};
-                    prefetchChild(scene, child);
-                }
-                r.next = node.child[first];
-            } else if ((rest & (rest - 1)) == 0) {
-                const int second = __builtin_ctz(rest);
-                const bool secondNearer = tEntry[second] < tEntry[first];
-                const int nearer = secondNearer ? second : first, farther = secondNearer ? first : second;
-                r.stack[r.sp++] = {node.child[farther], tEntry[farther]};
-                prefetchChild(scene, node.child[farther]);
-                r.next = node.child[nearer];
-            } else {
-                r.next = pushNearestLast(r.stack, r.sp, node, hits, tEntry);
-                for (; hits; hits &= hits - 1) {
-                    const NodeRef child = node.child[__builtin_ctz(hits)];
-                    if (child.bits != r.next.bits) prefetchChild(scene, child);
-                }
-            }
+            auto prefetch = [&](NodeRef child) __attribute__((always_inline)) { prefetchChild(scene, child); };
+            r.next = descendIntoChildren<N, Ordered>(r.stack, r.sp, node, hits, tEntry, prefetch);
             prefetchChild(scene, r.next);
             return true;
         }
@@ -90,7 +63,7 @@ template <int N, bool AnyHit, class Leaves>
         return false;
     }
     while (r.sp > 0) {
-        const typename InterleavedRay<N>::Entry e = r.stack[--r.sp];
+        const SingleRayEntry e = r.stack[--r.sp];
         if (Ordered && e.distance > r.hit.t * kRobustFarScale) continue;
         r.next = e.ref;  // asked for when it was pushed
         return true;

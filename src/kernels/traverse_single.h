@@ -22,6 +22,45 @@ constexpr int kStackSize = kMaxBvhDepth * (N - 1) + 1;
 template <int N>
 constexpr int kNodeSimdWidth = N < kMaxWidth ? N : kMaxWidth;
 
+/// A subtree waiting on a single ray's traversal stack.
+struct SingleRayEntry {
+    NodeRef ref;
+    float distance;  ///< where the ray enters the subtree's box
+};
+
+/// A single ray's step into the children `hits` (not none) of `node`: returns the child it goes on
+/// to and pushes the others, nearest last with Ordered (entry distances in tEntry), in slot order
+/// without. `pushed(ref)` is told each child pushed. The stack needs room for N entries beyond sp.
+template <int N, bool Ordered, class PushedFn>
+[[gnu::always_inline]] inline NodeRef descendIntoChildren(SingleRayEntry* stack, int& sp, const WideNode<N>& node,
+                                                          uint32_t hits, const float* tEntry, const PushedFn& pushed) {
+    const int first = __builtin_ctz(hits);
+    uint32_t rest = hits & (hits - 1);
+    if (rest == 0) return node.child[first];
+    if constexpr (!Ordered) {
+        for (; rest; rest &= rest - 1) {
+            const NodeRef child = node.child[__builtin_ctz(rest)];
+            stack[sp++] = {child, 0.0f};
+            pushed(child);
+        }
+        return node.child[first];
+    }
+    if ((rest & (rest - 1)) == 0) {  // the most common case after one hit: no sort, one push
+        const int second = __builtin_ctz(rest);
+        const bool secondNearer = tEntry[second] < tEntry[first];
+        const int nearer = secondNearer ? second : first, farther = secondNearer ? first : second;
+        stack[sp++] = {node.child[farther], tEntry[farther]};
+        pushed(node.child[farther]);
+        return node.child[nearer];
+    }
+    const NodeRef next = pushNearestLast(stack, sp, node, hits, tEntry);  // three or more
+    for (; hits; hits &= hits - 1) {
+        const NodeRef child = node.child[__builtin_ctz(hits)];
+        if (child.bits != next.bits) pushed(child);
+    }
+    return next;
+}
+
 /// Visits the leaves a ray reaches, nearest subtree first (with Ordered; otherwise in node order, which
 /// any-hit traversal prefers: any occluder will do). `leaf(ref)` returns true to stop (any-hit);
 /// `tfar()` is the current culling distance, which without Ordered must not change but where `leaf`
@@ -31,16 +70,12 @@ constexpr int kNodeSimdWidth = N < kMaxWidth ? N : kMaxWidth;
 template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn>
 inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, const TfarFn& tfar,
                          const LeafFn& leaf, TraversalCost& cost) {
-    struct Entry {
-        NodeRef ref;
-        float distance;  ///< where the ray enters the subtree's box
-    };
     const ChildBoxTest<N, NodeW> intersectChildren(box);
-    Entry stack[kStackSize<N> + N];  // room for the N entries pushNearestLast stores at once
+    SingleRayEntry stack[kStackSize<N> + N];  // room for the N entries pushNearestLast stores at once
     int sp = 0;
     stack[sp++] = {root, tnear};
     while (sp > 0) {
-        Entry e = stack[--sp];
+        SingleRayEntry e = stack[--sp];
         if (Ordered && e.distance > tfar() * kRobustFarScale) continue;
         NodeRef ref = e.ref;
         while (!ref.isLeaf()) {
@@ -51,28 +86,7 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
             if constexpr (Ordered) hits = intersectChildren(node, tnear, tfar(), tEntry);
             else hits = intersectChildren.hits(node, tnear, tfar());
             if (hits == 0) goto pop;
-            uint32_t mask = hits;
-            const int first = __builtin_ctz(mask);
-            mask &= mask - 1;
-            if (mask == 0) {
-                ref = node.child[first];
-                continue;
-            }
-            if constexpr (!Ordered) {
-                for (; mask; mask &= mask - 1) stack[sp++] = {node.child[__builtin_ctz(mask)], 0.0f};
-                ref = node.child[first];
-                continue;
-            }
-            const int second = __builtin_ctz(mask);
-            mask &= mask - 1;
-            if (mask == 0) {  // the most common case after one hit: no sort, one push
-                const bool secondNearer = tEntry[second] < tEntry[first];
-                const int nearer = secondNearer ? second : first, farther = secondNearer ? first : second;
-                stack[sp++] = {node.child[farther], tEntry[farther]};
-                ref = node.child[nearer];
-                continue;
-            }
-            ref = pushNearestLast(stack, sp, node, hits, tEntry);  // three or more
+            ref = descendIntoChildren<N, Ordered>(stack, sp, node, hits, tEntry, [](NodeRef) {});
         }
         if (leaf(ref)) return;
     pop:;

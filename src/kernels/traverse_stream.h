@@ -442,7 +442,7 @@ inline void storeSlotResult(StreamWorkspace& ws, int32_t s, const Hit& hit, bool
 }
 
 /// The rays of a short list at a leaf, one by one.
-template <int N, bool AnyHit, class Leaves>
+template <bool AnyHit, class Leaves>
 inline void traceLeafSingly(const Leaves& leaves, const Ray* rays, const StreamEntry& e, StreamWorkspace& ws) {
     for (uint32_t at = e.begin; at < e.end; ++at) {
         const int32_t s = ws.arena[at];
@@ -545,7 +545,7 @@ inline void traceStreamLists(const SceneView<N>& scene, const Ray* rays, size_t 
         if (e.afterSibling) e.end = dropCulledRays<K>(e, ws);
         if (e.end == e.begin) continue;
         if (isShort(e)) {
-            if (e.ref.isLeaf()) traceLeafSingly<N, AnyHit>(leaves, rays, e, ws);
+            if (e.ref.isLeaf()) traceLeafSingly<AnyHit>(leaves, rays, e, ws);
             else batch.add(rays, e, ws);
         } else if (e.ref.isLeaf()) traceStreamLeaf<K, AnyHit>(leaves, rays, e, ws);
         else if constexpr (Order == StreamOrder::ByList) sp += splitByList<N, K>(scene, e, ws, stack + sp);
