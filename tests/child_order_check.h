@@ -8,8 +8,8 @@
 namespace wideray::test {
 
 struct ChildOrderResult {
-    uint32_t refs[8];       ///< what went onto the stack, bottom first
-    float distances[8];
+    uint32_t refs[16];      ///< what went onto the stack, bottom first
+    float distances[16];
     int pushed = 0;
     uint32_t next = 0;      ///< the child returned to descend into
     uint32_t below = 0;     ///< the entry under the pushed ones, which must be left as it was
@@ -17,11 +17,13 @@ struct ChildOrderResult {
 
 inline namespace WIDERAY_ISA {
 
-/// A node whose slot i holds inner child 100 + i, entered at distances[i]; the stack holds one entry.
+/// An N-wide node whose slot i holds inner child 100 + i, entered at distances[i]; the stack holds
+/// one entry.
+template <int N = 8>
 inline ChildOrderResult runPushNearestLast(const float* distances, uint32_t mask) {
-    WideNode<8> node{};
-    alignas(64) float tEntry[8];
-    for (int i = 0; i < 8; ++i) {
+    WideNode<N> node{};
+    alignas(64) float tEntry[N];
+    for (int i = 0; i < N; ++i) {
         node.child[i] = NodeRef::inner(100 + uint32_t(i));
         tEntry[i] = distances[i];
     }
@@ -29,7 +31,7 @@ inline ChildOrderResult runPushNearestLast(const float* distances, uint32_t mask
         NodeRef ref;
         float distance;
     };
-    Entry stack[1 + 8 + 8];
+    Entry stack[1 + N + N];
     int sp = 0;
     stack[sp++] = {NodeRef::inner(7), 0.0f};
     const NodeRef next = pushNearestLast(stack, sp, node, mask, tEntry);

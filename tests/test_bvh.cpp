@@ -160,12 +160,14 @@ TEST(Bvh, WideCollapseKeepsEveryTriangleOnceInsideItsBoxes) {
     for (CollapseMethod collapse : {CollapseMethod::Sah, CollapseMethod::Greedy}) {
         checkWide<4>(mesh, collapse);
         checkWide<8>(mesh, collapse);
+        checkWide<16>(mesh, collapse);
     }
 }
 
 TEST(Bvh, SpatialSplitsCoverEveryTriangleWithinTheBudget) {
     checkWide<4>(testMesh(), CollapseMethod::Sah, BuildQuality::High);
     checkWide<8>(testMesh(), CollapseMethod::Sah, BuildQuality::High);
+    checkWide<16>(testMesh(), CollapseMethod::Sah, BuildQuality::High);
     checkWide<8>(makeCube(), CollapseMethod::Sah, BuildQuality::High);
     auto dir = sharedScenesDir();
     if (!dir) GTEST_SKIP() << "the shared meshes need ../shared/scenes (or WIDERAY_SCENES)";
@@ -203,6 +205,7 @@ TEST(Bvh, LeavesMergedAcrossASpatialSplitNameEachTriangleOnce) {
         ASSERT_GT(binary.primIndices.size(), mesh.triangles.size()) << count << ": the sliver must be split";
         checkWide<8>(mesh, config);
         checkWide<4>(mesh, config);
+        checkWide<16>(mesh, config);
     }
 }
 
@@ -295,6 +298,7 @@ void expectSahCollapseAtMostGreedy(const TriangleMesh& mesh, const std::string& 
 TEST(Bvh, SahCollapseCostsAtMostTheGreedyOne) {
     expectSahCollapseAtMostGreedy<4>(testMesh(), "test mesh");
     expectSahCollapseAtMostGreedy<8>(testMesh(), "test mesh");
+    expectSahCollapseAtMostGreedy<16>(testMesh(), "test mesh");
     expectSahCollapseAtMostGreedy<8>(makeTorus(1.0f, 0.3f, 200, 100), "torus");
     auto dir = sharedScenesDir();
     if (!dir) GTEST_SKIP() << "the shared meshes need ../shared/scenes (or WIDERAY_SCENES)";
@@ -302,6 +306,7 @@ TEST(Bvh, SahCollapseCostsAtMostTheGreedyOne) {
         const TriangleMesh mesh = loadMesh(*dir / file);
         expectSahCollapseAtMostGreedy<4>(mesh, file);
         expectSahCollapseAtMostGreedy<8>(mesh, file);
+        expectSahCollapseAtMostGreedy<16>(mesh, file);
     }
 }
 
@@ -311,6 +316,7 @@ TEST(Bvh, SingleTriangleAndTinyMeshes) {
     one.triangles = {{0, 1, 2}};
     checkWide<4>(one);
     checkWide<8>(one);
+    checkWide<16>(one);
     checkWide<8>(makeCube());
 }
 

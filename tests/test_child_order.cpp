@@ -54,6 +54,36 @@ TEST(ChildOrder, NearestLastByKeyOnEveryIsa) {
     EXPECT_EQ(checked, 40u * 219u);
 }
 
+/// 16-wide nodes (insertion on every ISA, four bits of the key for the slot): random masks of three or
+/// more children against distances with ties, farthest first by childOrderKey<16>.
+TEST(ChildOrder, SixteenWideNodesNearestLastByKey) {
+    const float pool[] = {-0.0f, 0.0f, 0.5f, std::nextafter(0.5f, 1.0f), 1.0f, 1.0f, 3.0f,
+                          std::numeric_limits<float>::infinity()};
+    std::mt19937 random(11);
+    std::uniform_int_distribution<int> pick(0, int(std::size(pool)) - 1);
+    std::uniform_int_distribution<uint32_t> masks(0, 0xFFFF);
+    for (int round = 0; round < 2000; ++round) {
+        float distances[16];
+        for (float& d : distances) d = pool[pick(random)];
+        const uint32_t mask = masks(random);
+        if (__builtin_popcount(mask) < 3) continue;
+        std::vector<int> slots;
+        for (int i = 0; i < 16; ++i)
+            if (mask >> i & 1) slots.push_back(i);
+        std::sort(slots.begin(), slots.end(), [&](int a, int b) {
+            return childOrderKey<16>(distances[a], a) > childOrderKey<16>(distances[b], b);
+        });
+        const ChildOrderResult r = runPushNearestLast<16>(distances, mask);
+        ASSERT_EQ(r.pushed, int(slots.size()) - 1) << "mask " << mask;
+        for (int k = 0; k < r.pushed; ++k) EXPECT_EQ(r.refs[k], 100u + uint32_t(slots[k])) << "mask " << mask;
+        EXPECT_EQ(r.next, 100u + uint32_t(slots.back())) << "mask " << mask;
+        EXPECT_EQ(r.below, 7u);
+    }
+    // Slot 15 still orders by distance first, and ties by slot.
+    EXPECT_LT(childOrderKey<16>(1.0f, 15), childOrderKey<16>(2.0f, 0));
+    EXPECT_LT(childOrderKey<16>(1.0f, 9), childOrderKey<16>(1.0f, 10));
+}
+
 TEST(ChildOrder, KeyIncreasesWithDistance) {
     const float ordered[] = {-std::numeric_limits<float>::max(), -1.0f, -1e-30f, -0.0f, 0.0f, 1e-30f, 1.0f,
                              std::numeric_limits<float>::max(), std::numeric_limits<float>::infinity()};

@@ -59,7 +59,7 @@ TEST(SceneGeometry, HitsTellTheirInstanceAndGeometry) {
     FlushToZeroScope ftz;
     auto geometry = std::make_shared<const SceneGeometry>(quadsAndSpheres(3, 2));
     const auto& triangles = static_cast<const TriangleGeometry&>((*geometry)[0]);
-    for (int width : {4, 8}) {
+    for (int width : {4, 8, 16}) {
         StructureOptions options;
         options.bvhWidth = width;
         for (const char* kernel : {"scalar", "single", "packet4", "stream"}) {

@@ -46,8 +46,8 @@ TEST(Instancing, HitsEqualTheFlattenedScenes) {
     rays.insert(rays.end(), random.begin(), random.end());
     const std::vector<Hit> expected = testing::traceThrough(flat, "wideray", "bvh8", rays);
     for (const char* backend : {"wideray", "embree"}) {
-        for (const char* accel : {"bvh8", "bvh4"}) {
-            if (std::string(backend) == "embree" && std::string(accel) == "bvh4") continue;
+        for (const char* accel : {"bvh8", "bvh4", "bvh16"}) {
+            if (std::string(backend) == "embree" && std::string(accel) != "bvh8") continue;
             const std::vector<Hit> hits = testing::traceThrough(twoLevel, backend, std::string(backend) == "embree" ? "" : accel, rays);
             size_t differ = 0, instanced = 0;
             for (size_t i = 0; i < rays.size(); ++i) {

@@ -165,6 +165,7 @@ TEST(Kernels, MatchReferenceOnDefaultScene) {
     SceneDescription scene = loadSceneOrMesh(std::filesystem::path(WIDERAY_SOURCE_DIR) / "scenes/default.json");
     checkScene<4>(scene, 128);
     checkScene<8>(scene, 128);
+    checkScene<16>(scene, 128);
 }
 
 TEST(Kernels, MatchReferenceOnGeneratedMeshes) {
@@ -177,6 +178,7 @@ TEST(Kernels, MatchReferenceOnGeneratedMeshes) {
     scene.materials.push_back({});
     checkScene<4>(scene, 96);
     checkScene<8>(scene, 96);
+    checkScene<16>(scene, 96);
 }
 
 TEST(Kernels, MatchReferenceThroughTwoLevelInstances) {
@@ -195,6 +197,7 @@ TEST(Kernels, MatchReferenceThroughTwoLevelInstances) {
     };
     check(SceneAccel<4>(geometry));
     check(SceneAccel<8>(geometry));
+    check(SceneAccel<16>(geometry));
 }
 
 class SharedMeshKernels : public ::testing::TestWithParam<const char*> {};
@@ -211,6 +214,7 @@ TEST_P(SharedMeshKernels, MatchReference) {
     scene.lights[0].position = scene.camera.position + (scene.lights[0].position - scene.camera.position) * 0.5f;
     checkScene<8>(scene, size);
     checkScene<4>(scene, size / 2);
+    checkScene<16>(scene, size / 2);
 }
 
 INSTANTIATE_TEST_SUITE_P(RealMeshes, SharedMeshKernels,

@@ -330,7 +330,7 @@ TEST(Library, ErrorsSayWhatIsWrong) {
 
     wideray::SceneOptions wide;
     wide.bvhWidth = 5;
-    expectError([&] { wideray::Scene{wide}; }, "bvhWidth: must be 4 or 8");
+    expectError([&] { wideray::Scene{wide}; }, "bvhWidth: must be 4, 8 or 16");
     for (auto [kernel, isa, message] : {std::tuple{"fastest", "", "SceneOptions::kernel: no kernel is named 'fastest'"},
                                         {"", "avx9", "SceneOptions::isa: 'avx9' is not one of"}}) {
         wideray::SceneOptions options;

@@ -63,6 +63,7 @@ TEST(Traversal, MatchesBruteForceOnGeneratedMeshes) {
         expectMatchesBruteForce<4>(mesh, rayBudget(mesh, 100000), 1);
         expectMatchesBruteForce<8>(mesh, rayBudget(mesh, 100000), 2);
         expectMatchesBruteForce<8>(mesh, rayBudget(mesh, 100000), 5, BuildQuality::High);
+        expectMatchesBruteForce<16>(mesh, rayBudget(mesh, 100000), 7, BuildQuality::High);
     }
 }
 
@@ -75,6 +76,7 @@ TEST_P(SharedMeshTraversal, MatchesBruteForce) {
     expectMatchesBruteForce<8>(mesh, rayBudget(mesh, 100000), 3);
     expectMatchesBruteForce<4>(mesh, rayBudget(mesh, 20000), 4);
     expectMatchesBruteForce<8>(mesh, rayBudget(mesh, 20000), 6, BuildQuality::High);
+    expectMatchesBruteForce<16>(mesh, rayBudget(mesh, 20000), 8, BuildQuality::High);
 }
 
 INSTANTIATE_TEST_SUITE_P(RealMeshes, SharedMeshTraversal,

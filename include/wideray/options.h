@@ -12,7 +12,7 @@ enum class BuildQuality {
 
 struct SceneOptions {
     BuildQuality quality = BuildQuality::Fast;
-    int bvhWidth = 8;  ///< children per node: 4 or 8
+    int bvhWidth = 8;  ///< children per node: 4, 8 or 16
     /// A kernel for every call ("scalar", "single", "packet4", "packet8", "packet16", "packet256",
     /// "stream", "drst"); empty: the fastest for each kind of call. For tests and measurements.
     std::string kernel;

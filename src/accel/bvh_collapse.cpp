@@ -326,5 +326,6 @@ WideBvh<N> collapseBvh(const BinaryBvh& binary, LeafWriter& leaves, const BvhBui
 
 template WideBvh<4> collapseBvh<4>(const BinaryBvh&, LeafWriter&, const BvhBuildConfig&);
 template WideBvh<8> collapseBvh<8>(const BinaryBvh&, LeafWriter&, const BvhBuildConfig&);
+template WideBvh<16> collapseBvh<16>(const BinaryBvh&, LeafWriter&, const BvhBuildConfig&);
 
 } // namespace wideray

@@ -66,5 +66,6 @@ BvhStats wideBvhStats(const WideBvh<N>& bvh, const BvhBuildConfig& config) {
 
 template BvhStats wideBvhStats<4>(const WideBvh<4>&, const BvhBuildConfig&);
 template BvhStats wideBvhStats<8>(const WideBvh<8>&, const BvhBuildConfig&);
+template BvhStats wideBvhStats<16>(const WideBvh<16>&, const BvhBuildConfig&);
 
 } // namespace wideray

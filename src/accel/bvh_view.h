@@ -35,11 +35,14 @@ struct InstanceTable {
     const InstanceMotion* motions = nullptr;
     const SceneView<4>* meshes4 = nullptr;  ///< one BVH per instanced mesh, of the scene BVH's width
     const SceneView<8>* meshes8 = nullptr;
+    const SceneView<16>* meshes16 = nullptr;
 
     template <int N>
     const SceneView<N>* meshes() const {
+        static_assert(N == 4 || N == 8 || N == 16);
         if constexpr (N == 4) return meshes4;
-        else return meshes8;
+        else if constexpr (N == 8) return meshes8;
+        else return meshes16;
     }
 };
 

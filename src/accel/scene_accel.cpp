@@ -236,7 +236,8 @@ void SceneAccel<N>::buildInstances(uint32_t geomId, const InstanceGeometry& inst
     instanceTable_.instances = instanceRefs_.data();
     instanceTable_.motions = instanceMotions_.data();
     if constexpr (N == 4) instanceTable_.meshes4 = meshViews_.data();
-    else instanceTable_.meshes8 = meshViews_.data();
+    else if constexpr (N == 8) instanceTable_.meshes8 = meshViews_.data();
+    else instanceTable_.meshes16 = meshViews_.data();
 }
 
 template <int N>
@@ -298,5 +299,6 @@ size_t SceneAccel<N>::flattenedBytes() const {
 
 template class SceneAccel<4>;
 template class SceneAccel<8>;
+template class SceneAccel<16>;
 
 } // namespace wideray

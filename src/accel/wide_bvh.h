@@ -50,6 +50,7 @@ struct alignas(64) WideNode {
 };
 static_assert(sizeof(WideNode<4>) == 128);
 static_assert(sizeof(WideNode<8>) == 256);
+static_assert(sizeof(WideNode<16>) == 448);
 
 template <int N>
 struct WideBvh {
@@ -71,7 +72,7 @@ public:
     virtual void write(std::span<const uint32_t> prims, uint32_t first) const = 0;
 };
 
-/// Collapses a binary BVH into an N-wide one (N = 4 or 8) as config.collapse says: the wide tree of
+/// Collapses a binary BVH into an N-wide one (N = 4, 8 or 16) as config.collapse says: the wide tree of
 /// least SAH cost (config's traversal and intersection costs, blocks of config.blockSize), or greedily.
 /// Parallel; the result does not depend on the thread count.
 template <int N>

@@ -126,8 +126,8 @@ void Scene::Impl::toCallerIds(Hit& hit) const {
 }
 
 Scene::Scene(const SceneOptions& options) : impl_(std::make_unique<Impl>()) {
-    if (options.bvhWidth != 4 && options.bvhWidth != 8)
-        throw Error(fmt::format("SceneOptions::bvhWidth: must be 4 or 8, not {}", options.bvhWidth));
+    if (options.bvhWidth != 4 && options.bvhWidth != 8 && options.bvhWidth != 16)
+        throw Error(fmt::format("SceneOptions::bvhWidth: must be 4, 8 or 16, not {}", options.bvhWidth));
     impl_->options = options;
 }
 

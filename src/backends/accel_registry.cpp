@@ -16,8 +16,10 @@ std::shared_ptr<const Structure> buildBvhOfWidth(std::shared_ptr<const SceneGeom
 }
 
 constexpr Accel kAccels[] = {
-    {"bvh8", "our wide BVH, 8 children per node, every kernel (the default)", &buildBvhOfWidth<8>},
-    {"bvh4", "our wide BVH, 4 children per node, every kernel", &buildBvhOfWidth<4>},
+    {"bvh8", "our wide BVH, 8 children per node, every kernel (the default)", &buildBvhOfWidth<8>, true},
+    {"bvh4", "our wide BVH, 4 children per node, every kernel", &buildBvhOfWidth<4>, true},
+    {"bvh16", "our wide BVH, 16 children per node (one AVX-512 box test), every kernel but drst",
+     &buildBvhOfWidth<16>, true},
     {"bvh2", "binary SAH BVH, stack traversal nearest child first", &buildBvh2},
     {"skip", "the binary BVH in depth-first order with miss links, stackless traversal", &buildSkipBvh},
     {"kdtree", "SAH kd-tree (Wald and Havran 2006) with split clipping, front-to-back traversal", &buildKdTreeStructure},
@@ -34,6 +36,8 @@ std::span<const Accel> accels() { return kAccels; }
 const Accel& findAccel(std::string_view name) {
     return findByName(accels(), name, "--accel", "acceleration structure");
 }
+
+bool isWideBvh(std::string_view name) { return findAccel(name).wideBvh; }
 
 std::shared_ptr<const Structure> buildWideray(std::shared_ptr<const SceneGeometry> geometry,
                                               const StructureOptions& options) {

@@ -13,7 +13,7 @@ namespace wideray {
 struct StructureOptions {
     /// wideray: the structure (backends/accel_registry.h); empty: the wide BVH of bvhWidth
     std::string accel;
-    int bvhWidth = 8;  ///< wideray: children per node, 4 or 8
+    int bvhWidth = 8;  ///< wideray: children per node, 4, 8 or 16
     /// wideray: fast (object splits) or high (spatial splits too); embree: low, medium or high
     /// (RTC_BUILD_QUALITY_*), fast meaning medium. Empty: the backend's default (fast, medium).
     std::string quality;

@@ -111,7 +111,7 @@ template <class Data, class Build>
 std::shared_ptr<const Structure> make(std::shared_ptr<const SceneGeometry> geometry, const StructureOptions& options,
                                       const char* name, Build build) {
     if (!options.quality.empty() && options.quality != "fast")
-        throw InputError("--quality", "", std::string(name) + " has one build quality (fast); high is for bvh4 and bvh8");
+        throw InputError("--quality", "", std::string(name) + " has one build quality (fast); high is for bvh4, bvh8 and bvh16");
     return std::make_shared<const CourseStructureOf<Data>>(std::move(geometry), name, build);
 }
 

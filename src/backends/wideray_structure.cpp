@@ -81,9 +81,12 @@ std::unique_ptr<Tracer> WideBvhStructure<N>::tracer(const KernelChoice& choice) 
     } else {
         const Kernel<N>* k = table.find(choice.kernel);
         if (!k) throw InputError("--kernel", "", "no kernel is named '" + choice.kernel + "'");
-        if (!k->available())
+        if (!k->available() && int(isa) < int(k->minimumIsa))
             throw InputError("--kernel", "", "kernel '" + choice.kernel + "' is not available with ISA " +
                                                  isaName(isa) + " (it needs " + isaName(k->minimumIsa) + ")");
+        if (!k->available())
+            throw InputError("--kernel", "", "kernel '" + choice.kernel + "' does not traverse " + std::to_string(N) +
+                                                 "-wide nodes (use --bvh-width 8)");
         coherent = incoherent = *k;
         coherentName = k->name;
     }
@@ -100,10 +103,12 @@ std::shared_ptr<const Structure> buildWideBvh(std::shared_ptr<const SceneGeometr
     else throw InputError("--quality", "", "our build quality is fast or high, not '" + options.quality + "'");
     if (options.bvhWidth == 4) return std::make_shared<WideBvhStructure<4>>(std::move(geometry), quality);
     if (options.bvhWidth == 8) return std::make_shared<WideBvhStructure<8>>(std::move(geometry), quality);
-    throw InputError("--bvh-width", "", "the BVH width must be 4 or 8");
+    if (options.bvhWidth == 16) return std::make_shared<WideBvhStructure<16>>(std::move(geometry), quality);
+    throw InputError("--bvh-width", "", "the BVH width must be 4, 8 or 16");
 }
 
 template class WideBvhStructure<4>;
 template class WideBvhStructure<8>;
+template class WideBvhStructure<16>;
 
 } // namespace wideray

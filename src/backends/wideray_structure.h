@@ -36,7 +36,7 @@ private:
 /// The ISA a choice asks for, checked against this CPU; throws InputError.
 Isa chosenIsa(const KernelChoice& choice);
 
-/// The bvh4 and bvh8 rows' build function: BVH4 or BVH8 as options.bvhWidth says, fast or high quality.
+/// The bvh4, bvh8 and bvh16 rows' build function: the BVH of options.bvhWidth, fast or high quality.
 std::shared_ptr<const Structure> buildWideBvh(std::shared_ptr<const SceneGeometry> geometry,
                                               const StructureOptions& options);
 

@@ -13,6 +13,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include "backends/accel_registry.h"
 #include "backends/backend_registry.h"
 #include "backends/course_structure.h"
 #include "backends/embree_structure.h"
@@ -45,7 +46,7 @@ struct BenchArgs {
     std::string backend = "both";
     std::string quality = "fast";  ///< our builds: fast, high or both
     bool counters = false;         ///< also count our kernels' work per ray
-    /// Our structures besides BVH8 (whose kernels are always measured): bvh4 and the course's.
+    /// Our structures besides BVH8 (whose kernels are always measured): bvh4, bvh16 and the course's.
     std::vector<std::string> accels;
     std::string instancing = "auto";
 };
@@ -259,7 +260,7 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
     for (const std::string& accel : args.accels) {
         if (accel == "bvh8") continue;
         for (const char* quality : {"fast", "high"})
-            if (accel != "bvh4" ? quality == std::string("fast") : args.quality == quality || args.quality == "both")
+            if (!isWideBvh(accel) ? quality == std::string("fast") : args.quality == quality || args.quality == "both")
                 planned.push_back({"wideray", accel, quality});
     }
     const std::vector<std::shared_ptr<const Structure>> built = buildAll(planned, geometry, args.runs, name);
@@ -267,7 +268,7 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
     // Our kernels are called directly on the BVH's view (the shadow-cache candidate needs a cache per task).
     std::vector<std::shared_ptr<const WideBvhStructure<8>>> ours;
     std::vector<std::pair<std::string, std::shared_ptr<const Structure>>> embree;
-    std::vector<Candidate> others;  // BVH4 with its single-ray kernels, the course's structures with theirs
+    std::vector<Candidate> others;  // BVH4 and BVH16 with their kernels, the course's structures with theirs
     for (size_t i = 0; i < planned.size(); ++i) {
         const PlannedBuild& p = planned[i];
         const std::shared_ptr<const Structure>& structure = built[i];
@@ -285,6 +286,10 @@ void benchOne(const BenchArgs& args, const std::string& input, nlohmann::json& r
         } else if (p.accel == "bvh4") {
             auto bvh4 = std::static_pointer_cast<const WideBvhStructure<4>>(structure);
             for (Candidate& c : ourCandidates(bvh4->accel(), p.quality, args.allIsas, {"scalar", "single"}))
+                others.push_back(std::move(c));
+        } else if (p.accel == "bvh16") {
+            auto bvh16 = std::static_pointer_cast<const WideBvhStructure<16>>(structure);
+            for (Candidate& c : ourCandidates(bvh16->accel(), p.quality, args.allIsas))
                 others.push_back(std::move(c));
         } else {
             for (Candidate& c : courseCandidates(std::dynamic_pointer_cast<const CourseStructure>(structure), p.accel,
@@ -395,7 +400,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "(JSON: nodes_per_ray, leaves_per_ray, primitives_per_ray)");
     cmd->add_option("--accel", args->accels,
                     accelHelp(true) + ". BVH8 and all its kernels are always measured; bvh4 adds its scalar and single "
-                                      "kernels, each of the others its single-ray kernel (JSON: accel)")
+                                      "kernels, bvh16 all of its kernels, each of the others its single-ray kernel "
+                                      "(JSON: accel)")
         ->check(CLI::IsMember(accelNames()))
         ->delimiter(',');
     cmd->add_flag("--all-isas", args->allIsas, "Measure our kernels for every ISA this CPU has, not only the best");

@@ -37,8 +37,8 @@ void addEngineOptions(CLI::App& app, EngineOptions& options) {
                    "docs/performance-analysis.md for what it saves)")
         ->check(CLI::IsMember({"on", "off"}))
         ->capture_default_str();
-    app.add_option("--bvh-width", options.bvhWidth, "Children per BVH node: 4 or 8")
-        ->check(CLI::IsMember({4, 8}))
+    app.add_option("--bvh-width", options.bvhWidth, "Children per BVH node: 4, 8 or 16")
+        ->check(CLI::IsMember({4, 8, 16}))
         ->capture_default_str();
     addQualityOption(app, options.quality);
     app.add_option("--accel", options.accel, accelHelp(false))->check(CLI::IsMember(accelNames()));
@@ -56,13 +56,13 @@ void addInstancingOption(CLI::App& app, std::string& instancing) {
 
 Instancing instancingFor(const std::string& option, const std::vector<std::string>& accels) {
     const bool singleLevel = std::any_of(accels.begin(), accels.end(), [](const std::string& a) {
-        return !a.empty() && a != "bvh4" && a != "bvh8";
+        return !a.empty() && !isWideBvh(a);
     });
     if (option == "flatten") return Instancing::Flatten;
     if (option == "two-level") {
         if (singleLevel)
             throw InputError("--instancing", "", "the course's structures are single-level: two-level instances need "
-                                                 "--accel bvh4 or bvh8 (or --instancing auto, which flattens for them)");
+                                                 "--accel bvh4, bvh8 or bvh16 (or --instancing auto, which flattens for them)");
         return Instancing::TwoLevel;
     }
     return singleLevel ? Instancing::Flatten : Instancing::Auto;
@@ -77,7 +77,7 @@ std::vector<std::string> accelNames() {
 std::string accelHelp(bool list) {
     std::string help = list ? "Acceleration structures to measure, comma-separated:" : "Acceleration structure:";
     for (const Accel& a : accels()) help += fmt::format(" {} ({});", a.name, a.description);
-    help += " the course's structures (all but bvh4 and bvh8) trace one ray at a time (docs/accelerators.md)";
+    help += " the course's structures (all but the bvh rows of 4, 8 and 16) trace one ray at a time (docs/accelerators.md)";
     return help;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The order in which single-ray traversal visits three or more hit children of a node: each child's
-// key is its entry distance as an ordered integer with the three lowest bits replaced by its slot, and
+// key is its entry distance as an ordered integer with the lowest bits (three, four for 16-wide
+// nodes) replaced by its slot, and
 // the children go onto the stack by key, farthest first, so that the nearest is taken next. The keys
 // are distinct, so every ISA visits the same nodes: 8-wide ISAs sort all slots at once with a sorting
 // network and store the entries with two vector stores (no branch on how the distances compare, which
@@ -21,10 +22,16 @@
 namespace wideray {
 inline namespace WIDERAY_ISA {
 
+/// The low bits of a key of an N-wide node's child that hold its slot.
+template <int N>
+constexpr int32_t kSlotMask = N <= 8 ? 7 : 15;
+
 /// Increases with the distance (for every float that is not NaN; the low bits break ties by slot).
+template <int N = 8>
 inline int32_t childOrderKey(float distance, int slot) {
+    static_assert(N <= 16, "four bits of the key hold the slot");
     const int32_t bits = std::bit_cast<int32_t>(distance);
-    return ((bits ^ int32_t(uint32_t(bits >> 31) >> 1)) & ~7) | slot;
+    return ((bits ^ int32_t(uint32_t(bits >> 31) >> 1)) & ~kSlotMask<N>) | slot;
 }
 
 #if defined(__AVX2__)
@@ -58,7 +65,6 @@ template <int MaxLanes>
 template <int N, class Entry>
 [[gnu::always_inline]] inline NodeRef pushNearestLast(Entry* stack, int& sp, const WideNode<N>& node, uint32_t mask,
                                                       const float* tEntry) {
-    static_assert(N <= 8, "three bits of the key hold the slot");
 #if defined(__AVX2__)
     if constexpr (N == 8) {
         static_assert(sizeof(Entry) == 8 && offsetof(Entry, distance) == sizeof(NodeRef),
@@ -88,13 +94,13 @@ template <int N, class Entry>
     int count = 0;
     for (; mask; mask &= mask - 1) {
         const int slot = __builtin_ctz(mask);
-        const int32_t key = childOrderKey(tEntry[slot], slot);
+        const int32_t key = childOrderKey<N>(tEntry[slot], slot);
         int j = count++;
         for (; j > 0 && keys[j - 1] < key; --j) keys[j] = keys[j - 1];
         keys[j] = key;
     }
     for (int k = 0; k < count; ++k) {
-        const int slot = keys[k] & 7;
+        const int slot = keys[k] & kSlotMask<N>;
         stack[sp++] = {node.child[slot], tEntry[slot]};
     }
     return stack[--sp].ref;

@@ -150,6 +150,18 @@ Kernel<N> packetKernel(const char* name, const char* description, const char* co
     return k;
 }
 
+/// A stream kernel; DRST only on nodes of up to kMaxStreamNodeWidth children (its visit code holds
+/// each ray's rank of every child in 32 bits), null entry points on wider ones.
+template <int N, StreamOrder Order>
+Kernel<N> streamKernel(const char* name, const char* description) {
+    Kernel<N> k{name, description, "rtcIntersect1M", Isa::Sse42};
+    if constexpr (Order == StreamOrder::ByList || N <= kMaxStreamNodeWidth) {
+        k.intersect = &streamIntersect<N, Order>;
+        k.occluded = &streamOccluded<N, Order>;
+    }
+    return k;
+}
+
 template <int N>
 KernelTable<N> makeTable() {
     return {{{
@@ -163,10 +175,10 @@ KernelTable<N> makeTable() {
         packetKernel<N, 16>("packet16", "16 rays (4x4 pixels) walk the tree together", "rtcIntersect16", Isa::Avx512),
         {"packet256", "256 rays (16x16 pixels): inner nodes tested once by interval arithmetic, leaves per sub-packet",
          "rtcIntersect16", Isa::Sse42, &largePacketIntersect<N>, &largePacketOccluded<N>, &largePacketOccludedCached<N>},
-        {"stream", "sorted streams of up to 4096 rays, filtered node by node into one list per child",
-         "rtcIntersect1M", Isa::Sse42, &streamIntersect<N, StreamOrder::ByList>, &streamOccluded<N, StreamOrder::ByList>},
-        {"drst", "sorted streams in which each ray visits its children in its own order (Dynamic Ray Stream Traversal)",
-         "rtcIntersect1M", Isa::Sse42, &streamIntersect<N, StreamOrder::ByRay>, &streamOccluded<N, StreamOrder::ByRay>},
+        streamKernel<N, StreamOrder::ByList>(
+            "stream", "sorted streams of up to 4096 rays, filtered node by node into one list per child"),
+        streamKernel<N, StreamOrder::ByRay>(
+            "drst", "sorted streams in which each ray visits its children in its own order (Dynamic Ray Stream Traversal)"),
     }}};
 }
 
@@ -175,5 +187,6 @@ KernelTable<N> makeTable() {
 
 template <> KernelTable<4> WIDERAY_ISA_TABLE<4>() { return makeTable<4>(); }
 template <> KernelTable<8> WIDERAY_ISA_TABLE<8>() { return makeTable<8>(); }
+template <> KernelTable<16> WIDERAY_ISA_TABLE<16>() { return makeTable<16>(); }
 
 } // namespace wideray
