@@ -1,5 +1,6 @@
-// Closest-hit traversal of an 8-wide BVH, one kernel at a time on one thread: the scalar reference
-// and every kernel of the best ISA this CPU has (the rows of kernels/kernel_registry.h), on the primary,
+// Closest-hit traversal of the 8-wide BVH (and of the 16-wide one, as bvh16_<kernel>), one kernel at a
+// time on one thread: the scalar reference and every kernel of the best ISA this CPU has (the rows of
+// kernels/kernel_registry.h), on the primary,
 // diffuse and bounce rays of `wideray bench` (render/bench_rays.h) for the Stanford bunny, or a generated torus
 // when the shared meshes are absent. WIDERAY_TRAVERSAL_INPUT names another scene file or mesh (an
 // interior scene, say: `WIDERAY_TRAVERSAL_INPUT=scenes/sponza_interior.json wideray_perf`);
@@ -27,6 +28,7 @@ constexpr int kImageSize = 512;  // 512 x 512 primary rays
 constexpr const char* kBunny = "stanford-bunny/bun_zipper.ply";
 
 struct TraversalInputs {
+    SceneDescription scene;
     std::shared_ptr<const WideBvhStructure<8>> bvh;
     BenchRays rays;
 };
@@ -51,6 +53,7 @@ const TraversalInputs& inputs() {
                       : bunny       ? sceneFromMesh(*bunny, kImageSize, kImageSize)
                                     : sceneFromMesh(makeTorus(1.0f, 0.3f, 400, 200), kImageSize, kImageSize);
         TraversalInputs in;
+        in.scene = scene;
         in.bvh = std::make_shared<const WideBvhStructure<8>>(std::make_shared<const SceneGeometry>(scene),
                                                              chosenQuality());
         in.rays = makeBenchRays(scene, *in.bvh->tracer({"scalar"}), kImageSize, kImageSize);
@@ -59,12 +62,24 @@ const TraversalInputs& inputs() {
     return built;
 }
 
-void traverse(benchmark::State& state, Kernel<8> kernel, RayKind kind) {
+/// The BVH of width N over the inputs' scene (the 8-wide one is theirs).
+template <int N>
+const WideBvhStructure<N>& bvhOfWidth() {
+    if constexpr (N == 8) {
+        return *inputs().bvh;
+    } else {
+        static const WideBvhStructure<N> built(std::make_shared<const SceneGeometry>(inputs().scene), chosenQuality());
+        return built;
+    }
+}
+
+template <int N>
+void traverse(benchmark::State& state, Kernel<N> kernel, RayKind kind) {
     enableFlushToZero();
     const TraversalInputs& in = inputs();
     const std::vector<Ray>& rays = in.rays.of(kind);
     std::vector<Hit> hits(rays.size());
-    SceneView<8> view = in.bvh->accel().view();
+    SceneView<N> view = bvhOfWidth<N>().accel().view();
     for (auto _ : state) {
         kernel.intersect(view, rays.data(), hits.data(), rays.size(), nullptr);
         benchmark::DoNotOptimize(hits.data());
@@ -73,17 +88,23 @@ void traverse(benchmark::State& state, Kernel<8> kernel, RayKind kind) {
                                                   benchmark::Counter::kIsRate);
 }
 
-[[maybe_unused]] const bool registerKernels = [] {
-    std::vector<std::pair<Kernel<8>, std::string>> kernels;
+template <int N>
+void registerKernels(const std::string& prefix) {
+    std::vector<std::pair<Kernel<N>, std::string>> kernels;
     const Isa isa = bestIsa();
-    for (const Kernel<8>& k : kernelTable<8>(isa).rows)
-        if (k.available()) kernels.push_back({k, std::string(k.name) + "_" + isaName(isa)});
+    for (const Kernel<N>& k : kernelTable<N>(isa).rows)
+        if (k.available()) kernels.push_back({k, prefix + k.name + "_" + isaName(isa)});
     for (RayKind kind : {RayKind::Primary, RayKind::Diffuse, RayKind::Bounce})
         for (const auto& [kernel, name] : kernels)
             benchmark::RegisterBenchmark(("traversal/" + inputName() + "/" + rayKindName(kind) + "/" + name).c_str(),
-                                         traverse, kernel, kind)
+                                         traverse<N>, kernel, kind)
                 ->Unit(benchmark::kMillisecond)
                 ->UseRealTime();
+}
+
+[[maybe_unused]] const bool registered = [] {
+    registerKernels<8>("");
+    registerKernels<16>("bvh16_");
     return true;
 }();
 

@@ -50,5 +50,8 @@ inline ChildOrderResult runPushNearestLast(const float* distances, uint32_t mask
 
 /// The same compiled for AVX2 (avx2_checks.cpp): call only where the CPU has it.
 ChildOrderResult runPushNearestLastAvx2(const float* distances, uint32_t mask);
+/// A 16-wide node's, compiled for AVX-512 (avx512_checks.cpp, the sorting network): call only where
+/// the CPU has it.
+ChildOrderResult runPushNearestLast16Avx512(const float* distances, uint32_t mask);
 
 } // namespace wideray::test

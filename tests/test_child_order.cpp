@@ -54,9 +54,11 @@ TEST(ChildOrder, NearestLastByKeyOnEveryIsa) {
     EXPECT_EQ(checked, 40u * 219u);
 }
 
-/// 16-wide nodes (insertion on every ISA, four bits of the key for the slot): random masks of three or
-/// more children against distances with ties, farthest first by childOrderKey<16>.
+/// 16-wide nodes (four bits of the key for the slot): random masks of three or more children against
+/// distances with ties, farthest first by childOrderKey<16>, by insertion (baseline) and, where the
+/// CPU has it, by the AVX-512 sorting network.
 TEST(ChildOrder, SixteenWideNodesNearestLastByKey) {
+    const bool avx512 = cpuSupports(Isa::Avx512);
     const float pool[] = {-0.0f, 0.0f, 0.5f, std::nextafter(0.5f, 1.0f), 1.0f, 1.0f, 3.0f,
                           std::numeric_limits<float>::infinity()};
     std::mt19937 random(11);
@@ -73,11 +75,17 @@ TEST(ChildOrder, SixteenWideNodesNearestLastByKey) {
         std::sort(slots.begin(), slots.end(), [&](int a, int b) {
             return childOrderKey<16>(distances[a], a) > childOrderKey<16>(distances[b], b);
         });
-        const ChildOrderResult r = runPushNearestLast<16>(distances, mask);
-        ASSERT_EQ(r.pushed, int(slots.size()) - 1) << "mask " << mask;
-        for (int k = 0; k < r.pushed; ++k) EXPECT_EQ(r.refs[k], 100u + uint32_t(slots[k])) << "mask " << mask;
-        EXPECT_EQ(r.next, 100u + uint32_t(slots.back())) << "mask " << mask;
-        EXPECT_EQ(r.below, 7u);
+        auto expectOrder = [&](const ChildOrderResult& r, const char* isa) {
+            ASSERT_EQ(r.pushed, int(slots.size()) - 1) << isa << " mask " << mask;
+            for (int k = 0; k < r.pushed; ++k) {
+                EXPECT_EQ(r.refs[k], 100u + uint32_t(slots[k])) << isa << " mask " << mask << " entry " << k;
+                EXPECT_EQ(std::memcmp(&r.distances[k], &distances[slots[k]], sizeof(float)), 0) << isa << " mask " << mask;
+            }
+            EXPECT_EQ(r.next, 100u + uint32_t(slots.back())) << isa << " mask " << mask;
+            EXPECT_EQ(r.below, 7u) << isa;
+        };
+        expectOrder(runPushNearestLast<16>(distances, mask), "baseline");
+        if (avx512) expectOrder(runPushNearestLast16Avx512(distances, mask), "avx512");
     }
     // Slot 15 still orders by distance first, and ties by slot.
     EXPECT_LT(childOrderKey<16>(1.0f, 15), childOrderKey<16>(2.0f, 0));

@@ -3,9 +3,10 @@
 // key is its entry distance as an ordered integer with the lowest bits (three, four for 16-wide
 // nodes) replaced by its slot, and
 // the children go onto the stack by key, farthest first, so that the nearest is taken next. The keys
-// are distinct, so every ISA visits the same nodes: 8-wide ISAs sort all slots at once with a sorting
-// network and store the entries with two vector stores (no branch on how the distances compare, which
-// no predictor learns); the others insert one child at a time.
+// are distinct, so every ISA visits the same nodes: 8-wide ISAs sort all slots of an 8-wide node at
+// once with a sorting network and store the entries with two vector stores (no branch on how the
+// distances compare, which no predictor learns), AVX-512 those of a 16-wide node with a network of
+// ten steps; the others insert one child at a time.
 #include <bit>
 #include <climits>
 #include <cstddef>
@@ -13,7 +14,7 @@
 
 #include "accel/wide_bvh.h"
 
-#if defined(__AVX2__)
+#if defined(__AVX2__) || defined(__AVX512F__)
 #include <immintrin.h>
 #endif
 
@@ -59,7 +60,41 @@ template <int MaxLanes>
 }
 #endif
 
-/// Pushes the children in `mask` (three or more) with their entry distances (tEntry, 32-byte aligned),
+#if defined(__AVX512F__)
+/// The lanes of a descending bitonic network's step (blocks of K, partners i ^ J) that keep the larger.
+constexpr __mmask16 maxLanes(int k, int j) {
+    __mmask16 lanes = 0;
+    for (int i = 0; i < 16; ++i)
+        if (((i & j) == 0) == ((i & k) == 0)) lanes = __mmask16(lanes | 1 << i);
+    return lanes;
+}
+
+template <int K, int J>
+[[gnu::always_inline]] inline __m512i compareExchange16(__m512i v) {
+    __m512i partner;
+    if constexpr (J == 1) partner = _mm512_shuffle_epi32(v, _MM_PERM_CDAB);
+    else if constexpr (J == 2) partner = _mm512_shuffle_epi32(v, _MM_PERM_BADC);
+    else if constexpr (J == 4) partner = _mm512_shuffle_i32x4(v, v, 0xB1);  // 128-bit lanes 1, 0, 3, 2
+    else partner = _mm512_shuffle_i32x4(v, v, 0x4E);                       // 256-bit halves swapped
+    return _mm512_mask_max_epi32(_mm512_min_epi32(v, partner), maxLanes(K, J), v, partner);
+}
+
+/// Bitonic sort of sixteen integers, largest in lane 0: ten steps.
+[[gnu::always_inline]] inline __m512i sortDescending16(__m512i v) {
+    v = compareExchange16<2, 1>(v);
+    v = compareExchange16<4, 2>(v);
+    v = compareExchange16<4, 1>(v);
+    v = compareExchange16<8, 4>(v);
+    v = compareExchange16<8, 2>(v);
+    v = compareExchange16<8, 1>(v);
+    v = compareExchange16<16, 8>(v);
+    v = compareExchange16<16, 4>(v);
+    v = compareExchange16<16, 2>(v);
+    return compareExchange16<16, 1>(v);
+}
+#endif
+
+/// Pushes the children in `mask` (three or more) with their entry distances (tEntry, 64-byte aligned),
 /// farthest first, and returns the nearest, which the caller descends into. Entry is {NodeRef ref;
 /// float distance;}; the stack needs room for N entries beyond sp.
 template <int N, class Entry>
@@ -86,6 +121,29 @@ template <int N, class Entry>
         const __m256i low = _mm256_unpacklo_epi32(refs, distances), high = _mm256_unpackhi_epi32(refs, distances);
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(stack + sp), _mm256_permute2x128_si256(low, high, 0x20));
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(stack + sp + 4), _mm256_permute2x128_si256(low, high, 0x31));
+        sp += __builtin_popcount(mask) - 1;
+        return node.child[nearest];
+    }
+#endif
+#if defined(__AVX512F__)
+    if constexpr (N == 16) {
+        static_assert(sizeof(Entry) == 8 && offsetof(Entry, distance) == sizeof(NodeRef),
+                      "the stores write (ref, distance) pairs");
+        const __m512i bits = _mm512_castps_si512(_mm512_load_ps(tEntry));
+        const __m512i ordered = _mm512_xor_si512(bits, _mm512_srli_epi32(_mm512_srai_epi32(bits, 31), 1));
+        const __m512i slotMask = _mm512_set1_epi32(kSlotMask<16>);
+        __m512i keys = _mm512_or_si512(_mm512_andnot_si512(slotMask, ordered),
+                                       _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+        const __mmask16 hit = __mmask16(mask);
+        const int nearest = _mm512_mask_reduce_min_epi32(hit, keys) & kSlotMask<16>;  // beside the sort, as above
+        keys = _mm512_mask_mov_epi32(_mm512_set1_epi32(INT_MIN), hit, keys);      // the slots missed sort last
+        const __m512i slots = _mm512_and_si512(sortDescending16(keys), slotMask);
+        const __m512i refs = _mm512_permutexvar_epi32(slots, _mm512_loadu_si512(node.child));
+        const __m512i distances = _mm512_permutexvar_epi32(slots, bits);
+        const __m512i firstPairs = _mm512_setr_epi32(0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
+        const __m512i lastPairs = _mm512_add_epi32(firstPairs, _mm512_set1_epi32(8));
+        _mm512_storeu_si512(stack + sp, _mm512_permutex2var_epi32(refs, firstPairs, distances));
+        _mm512_storeu_si512(stack + sp + 8, _mm512_permutex2var_epi32(refs, lastPairs, distances));
         sp += __builtin_popcount(mask) - 1;
         return node.child[nearest];
     }
