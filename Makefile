@@ -46,8 +46,8 @@ fuzz: deps
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzzers
 	ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp UBSAN_OPTIONS=print_stacktrace=1 scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
-## Our kernels (on our fast and high quality builds) against Embree's (on its medium and high quality
-## builds) on the shared meshes, framed
+## Our kernels (on our fast and high quality builds, 8 and 16 children per node) against Embree's (on
+## its medium and high quality builds) on the shared meshes, framed
 ## from outside, and on interior views (BENCH_SCENES): a comparison on all threads (out/bench.json),
 ## a thread-scaling run on 1..nproc threads (out/scaling.json), then docs/performance.md and
 ## docs/performance.svg regenerated from the JSON. Meshes missing from SCENES_DIR are left out.
@@ -63,7 +63,7 @@ BENCH_SCENES ?= scenes/sponza_interior.json scenes/country_kitchen.json
 SCALING_MESHES ?= stanford-bunny/bun_zipper.ply crytek-sponza/sponza.obj
 SCALING_THREADS ?= $(shell seq 1 $(shell nproc))
 BENCH_COMMAND = $(BUILD)/wideray bench $(wildcard $(addprefix $(SCENES_DIR)/,$(BENCH_MESHES))) $(BENCH_SCENES) \
-  --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --quality both --counters --json out/bench.json
+  --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --quality both --accel bvh16 --counters --json out/bench.json
 SCALING_COMMAND = $(BUILD)/wideray bench $(wildcard $(addprefix $(SCENES_DIR)/,$(SCALING_MESHES))) \
   --size $(BENCH_SIZE) --runs $(BENCH_RUNS) --rays primary,diffuse
 SCALING_LOOP = for t in $(SCALING_THREADS); do $(SCALING_COMMAND) --threads $$t --json out/scaling-$$t-threads.json || exit 1; done

@@ -72,7 +72,7 @@ def scenes_in_order(records):
 def index_results(results):
     """(scene, ray kind, backend) -> {kernel label: record}; ours are labelled with the ISA when
     several ISAs were measured (bench --all-isas). Every kernel keeps the faster of its builds (ours:
-    fast or high quality, Embree's: medium or high; the record's "quality")."""
+    fast or high quality, 8 or 16 wide; Embree's: medium or high; the record's "quality" and "accel")."""
     isas = {r["isa"] for r in results if r["backend"] == "wideray"}
     table = {}
     for r in results:
@@ -85,9 +85,17 @@ def index_results(results):
     return table
 
 
+def build_name(record, default):
+    """The build a record was measured on: its quality, and the width of ours where not the 8-wide BVH."""
+    name = record.get("quality", default)
+    if record.get("accel", "bvh8") not in ("bvh8", "embree"):
+        name += ", " + record["accel"]
+    return name
+
+
 def build_label(label, record):
-    """A kernel with the build quality it was fastest on."""
-    return "%s, %s" % (label, record["quality"]) if "quality" in record else label
+    """A kernel with the build it was fastest on."""
+    return "%s, %s" % (label, build_name(record, "")) if "quality" in record else label
 
 
 def workload(record):
@@ -197,7 +205,8 @@ def summary_section(bench, table, chart_name):
     header = ("scene", "triangles", "rays", "ours, Mrays/s (kernel, build)", "Embree, Mrays/s (kernel, build)",
               "ours / Embree")
     parts = ["## Best against best\n\nMrays/s of the fastest kernel of each backend for each scene and ray kind; "
-             "every kernel is traced on each build (ours: fast and high quality; Embree's: medium and high) "
+             "every kernel is traced on each build (ours: fast and high quality, 8 and 16 children per node, "
+             "the 16-wide BVH named where it was faster; Embree's: medium and high) "
              "and the faster counts "
              "(chart: [%s](%s))." % (chart_name, chart_name)]
     if rows["scene"]:
@@ -222,7 +231,8 @@ def kernel_section(bench, table):
     parts = ["## Kernel against kernel\n\nMrays/s. Each of our kernels next to its Embree counterpart: single "
              "ray and the scalar reference against `rtcIntersect1`, packetK against `rtcIntersectK` "
              "(`rtcOccludedK` for shadow rays), packet256 against `rtcIntersect16`, stream against "
-             "`rtcIntersect1M`. Each number is that of the kernel's faster build (ours: fast or high quality; Embree's: medium or high)."]
+             "`rtcIntersect1M`. Each number is that of the kernel's fastest build (ours: fast or high quality, "
+             "8 or 16 children per node, the 16-wide BVH named where it was faster; Embree's: medium or high)."]
     for scene in scenes_in_order(bench["results"]):
         header = ["ours", "Embree"]
         for kind in RAY_KINDS:
@@ -235,7 +245,7 @@ def kernel_section(bench, table):
             for kind in RAY_KINDS:
                 ours = table.get((scene, kind, "wideray"), {}).get(label)
                 theirs = table.get((scene, kind, "embree"), {}).get(embree_counterpart(kernel, kind))
-                row += ["%s (%s)" % (mrays(ours["mrays_per_s"]), ours.get("quality", "fast")) if ours else "",
+                row += ["%s (%s)" % (mrays(ours["mrays_per_s"]), build_name(ours, "fast")) if ours else "",
                         "%s (%s)" % (mrays(theirs["mrays_per_s"]), theirs.get("quality", "medium")) if theirs else "",
                         ratio(ours["mrays_per_s"], theirs["mrays_per_s"]) if ours and theirs else ""]
             rows.append(row)
@@ -276,7 +286,8 @@ def work_section(bench, table):
 def builds_by_scene(builds):
     out = OrderedDict()
     for b in builds:
-        out.setdefault(b["scene"], {})[b["backend"] + "-" + b.get("quality", "fast")] = b
+        width = "" if b.get("accel", "bvh8") in ("bvh8", "embree") else b["accel"] + "-"
+        out.setdefault(b["scene"], {})[b["backend"] + "-" + width + b.get("quality", "fast")] = b
     return out
 
 
@@ -307,7 +318,8 @@ def build_section(bench):
             "builds as timed runs, after a warm-up build, the builders taken in turn), and the memory of the "
             "acceleration structure (ours: binned SAH binary BVH collapsed to 8 wide, with leaf triangle "
             "blocks; high quality adds spatial splits, references per triangle say how many triangles "
-            "they duplicate). Build speed ratios are Embree's time / ours, fast against medium and high "
+            "they duplicate; the 16-wide BVH, also traced, is the same binary build collapsed to 16 wide, "
+            "its builds in the JSON). Build speed ratios are Embree's time / ours, fast against medium and high "
             "against high (above 1 we build faster); the memory ratio is ours (fast) / Embree medium "
             "(below 1 we use less).\n\n"
             + md_table(("scene", "ours fast ms", "ours fast MB", "ours high ms", "ours high MB",
