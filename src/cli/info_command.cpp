@@ -25,7 +25,7 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
     auto instancing = std::make_shared<std::string>("auto");
     addInstancingOption(*cmd, *instancing);
     auto accel = std::make_shared<std::vector<std::string>>();
-    cmd->add_option("--accel", *accel, accelHelp(true) + " (default: bvh4,bvh8)")
+    cmd->add_option("--accel", *accel, accelHelp(true) + " (default: bvh4,bvh8,bvh16)")
         ->check(CLI::IsMember(accelNames()))
         ->delimiter(',');
     cmd->callback([files, isa, quality, accel, instancing, &exitCode] {
@@ -39,7 +39,7 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
                 try {
                     SceneDescription scene = loadSceneOrMesh(file);
                     for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
-                    const std::vector<std::string> accels = accel->empty() ? std::vector<std::string>{"bvh4", "bvh8"} : *accel;
+                    const std::vector<std::string> accels = accel->empty() ? std::vector<std::string>{"bvh4", "bvh8", "bvh16"} : *accel;
                     auto geometry = std::make_shared<const SceneGeometry>(scene, instancingFor(*instancing, accels));
                     size_t dropped = 0;
                     for (const TriangleMesh& m : scene.meshes) dropped += m.droppedDegenerate;
