@@ -7,10 +7,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "backends/wideray_structure.h"
+#include "core/error.h"
 #include "core/fp_mode.h"
 #include "geometry/scene_geometry.h"
 #include "geometry/triangle_geometry.h"
 #include "io/mesh_generators.h"
+#include "kernels/kernel_registry.h"
 
 namespace wideray {
 namespace {
@@ -80,6 +82,23 @@ TEST(SceneGeometry, HitsTellTheirInstanceAndGeometry) {
             EXPECT_NEAR(sphere.t, 2.0f - std::sqrt(0.24f), 1e-5f) << kernel;  // z = 0.1 off the center
             EXPECT_FALSE(traceDown(*tracer, 8.5f, 5.0f).valid()) << kernel;
         }
+    }
+}
+
+/// DRST's visit code holds eight children: on 16-wide nodes its row is empty, and asking for it says
+/// why instead of naming an ISA.
+TEST(SceneGeometry, DrstIsRefusedOnSixteenWideNodes) {
+    auto geometry = std::make_shared<const SceneGeometry>(quadsAndSpheres(3, 2));
+    StructureOptions options;
+    options.bvhWidth = 16;
+    const auto structure = buildWideBvh(geometry, options);
+    EXPECT_FALSE(kernelTable<16>(Isa::Sse42).find("drst")->available());
+    EXPECT_TRUE(kernelTable<16>(Isa::Sse42).find("stream")->available());
+    try {
+        structure->tracer({"drst"});
+        ADD_FAILURE() << "drst on a 16-wide BVH must be refused";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("16-wide"), std::string::npos) << e.what();
     }
 }
 
