@@ -13,6 +13,32 @@
 namespace wideray::test {
 namespace {
 
+/// The slots of `mask` farthest first by childOrderKey<N>: the order pushNearestLast must push them in.
+template <int N>
+std::vector<int> orderByKey(const float* distances, uint32_t mask) {
+    std::vector<int> slots;
+    for (int i = 0; i < N; ++i)
+        if (mask >> i & 1) slots.push_back(i);
+    std::sort(slots.begin(), slots.end(), [&](int a, int b) {
+        return childOrderKey<N>(distances[a], a) > childOrderKey<N>(distances[b], b);
+    });
+    return slots;
+}
+
+/// All slots but the nearest pushed in `slots`' order with their distances, the nearest returned, the
+/// entry below untouched.
+void expectPushedInOrder(const ChildOrderResult& r, const std::vector<int>& slots, const float* distances,
+                         uint32_t mask, const char* isa) {
+    ASSERT_EQ(r.pushed, int(slots.size()) - 1) << isa << " mask " << mask;
+    for (int k = 0; k < r.pushed; ++k) {
+        EXPECT_EQ(r.refs[k], 100u + uint32_t(slots[k])) << isa << " mask " << mask << " entry " << k;
+        EXPECT_EQ(std::memcmp(&r.distances[k], &distances[slots[k]], sizeof(float)), 0)
+            << isa << " mask " << mask << " entry " << k;
+    }
+    EXPECT_EQ(r.next, 100u + uint32_t(slots.back())) << isa << " mask " << mask;
+    EXPECT_EQ(r.below, 7u) << isa;
+}
+
 /// Every slot mask with three or more children, against distances drawn with many ties (equal
 /// values, -0 and +0, neighbouring floats, infinity, negatives): the children go onto the stack by
 /// childOrderKey, farthest first, the nearest is returned, and the entry below is untouched. The
@@ -30,24 +56,9 @@ TEST(ChildOrder, NearestLastByKeyOnEveryIsa) {
         for (float& d : distances) d = round % 2 ? pool[pick(random)] : spread(random);
         for (uint32_t mask = 0; mask < 256; ++mask) {
             if (__builtin_popcount(mask) < 3) continue;
-            std::vector<int> slots;
-            for (int i = 0; i < 8; ++i)
-                if (mask >> i & 1) slots.push_back(i);
-            std::sort(slots.begin(), slots.end(), [&](int a, int b) {
-                return childOrderKey(distances[a], a) > childOrderKey(distances[b], b);
-            });
-            auto expectOrder = [&](const ChildOrderResult& r, const char* isa) {
-                ASSERT_EQ(r.pushed, int(slots.size()) - 1) << isa << " mask " << mask;
-                for (int k = 0; k < r.pushed; ++k) {
-                    EXPECT_EQ(r.refs[k], 100u + uint32_t(slots[k])) << isa << " mask " << mask << " entry " << k;
-                    EXPECT_EQ(std::memcmp(&r.distances[k], &distances[slots[k]], sizeof(float)), 0)
-                        << isa << " mask " << mask << " entry " << k;
-                }
-                EXPECT_EQ(r.next, 100u + uint32_t(slots.back())) << isa << " mask " << mask;
-                EXPECT_EQ(r.below, 7u) << isa;
-            };
-            expectOrder(runPushNearestLast(distances, mask), "baseline");
-            if (avx2) expectOrder(runPushNearestLastAvx2(distances, mask), "avx2");
+            const std::vector<int> slots = orderByKey<8>(distances, mask);
+            expectPushedInOrder(runPushNearestLast(distances, mask), slots, distances, mask, "baseline");
+            if (avx2) expectPushedInOrder(runPushNearestLastAvx2(distances, mask), slots, distances, mask, "avx2");
             ++checked;
         }
     }
@@ -69,23 +80,10 @@ TEST(ChildOrder, SixteenWideNodesNearestLastByKey) {
         for (float& d : distances) d = pool[pick(random)];
         const uint32_t mask = masks(random);
         if (__builtin_popcount(mask) < 3) continue;
-        std::vector<int> slots;
-        for (int i = 0; i < 16; ++i)
-            if (mask >> i & 1) slots.push_back(i);
-        std::sort(slots.begin(), slots.end(), [&](int a, int b) {
-            return childOrderKey<16>(distances[a], a) > childOrderKey<16>(distances[b], b);
-        });
-        auto expectOrder = [&](const ChildOrderResult& r, const char* isa) {
-            ASSERT_EQ(r.pushed, int(slots.size()) - 1) << isa << " mask " << mask;
-            for (int k = 0; k < r.pushed; ++k) {
-                EXPECT_EQ(r.refs[k], 100u + uint32_t(slots[k])) << isa << " mask " << mask << " entry " << k;
-                EXPECT_EQ(std::memcmp(&r.distances[k], &distances[slots[k]], sizeof(float)), 0) << isa << " mask " << mask;
-            }
-            EXPECT_EQ(r.next, 100u + uint32_t(slots.back())) << isa << " mask " << mask;
-            EXPECT_EQ(r.below, 7u) << isa;
-        };
-        expectOrder(runPushNearestLast<16>(distances, mask), "baseline");
-        if (avx512) expectOrder(runPushNearestLast16Avx512(distances, mask), "avx512");
+        const std::vector<int> slots = orderByKey<16>(distances, mask);
+        expectPushedInOrder(runPushNearestLast<16>(distances, mask), slots, distances, mask, "baseline");
+        if (avx512)
+            expectPushedInOrder(runPushNearestLast16Avx512(distances, mask), slots, distances, mask, "avx512");
     }
     // Slot 15 still orders by distance first, and ties by slot.
     EXPECT_LT(childOrderKey<16>(1.0f, 15), childOrderKey<16>(2.0f, 0));

@@ -37,12 +37,19 @@ struct InstanceTable {
     const SceneView<8>* meshes8 = nullptr;
     const SceneView<16>* meshes16 = nullptr;
 
+    /// The member holding the mesh views of width N (assignable on a non-const table).
     template <int N>
-    const SceneView<N>* meshes() const {
+    auto& meshes() { return meshesOf<N>(*this); }
+    template <int N>
+    const SceneView<N>* meshes() const { return meshesOf<N>(*this); }
+
+private:
+    template <int N, class Table>
+    static auto& meshesOf(Table& table) {
         static_assert(N == 4 || N == 8 || N == 16);
-        if constexpr (N == 4) return meshes4;
-        else if constexpr (N == 8) return meshes8;
-        else return meshes16;
+        if constexpr (N == 4) return table.meshes4;
+        else if constexpr (N == 8) return table.meshes8;
+        else return table.meshes16;
     }
 };
 

@@ -235,9 +235,7 @@ void SceneAccel<N>::buildInstances(uint32_t geomId, const InstanceGeometry& inst
     instanceTable_.geomId = geomId;
     instanceTable_.instances = instanceRefs_.data();
     instanceTable_.motions = instanceMotions_.data();
-    if constexpr (N == 4) instanceTable_.meshes4 = meshViews_.data();
-    else if constexpr (N == 8) instanceTable_.meshes8 = meshViews_.data();
-    else instanceTable_.meshes16 = meshViews_.data();
+    instanceTable_.meshes<N>() = meshViews_.data();
 }
 
 template <int N>
