@@ -18,6 +18,7 @@ struct SpatialBinMapping {
     int count = 0;
     __m128 offset, scale;
     int splittableAxes = 0;  ///< bit a: binned along axis a (the box has extent there, and the builder wants it)
+    bool clipTriangles = true;  ///< false: a reference's parts in its bins are its box cut by the planes
     float planes[3][kMaxSpatialBins + 1];  ///< [axis][bin]: the bin's lower plane
 
     SpatialBinMapping(const BuildBox& bounds, int binCount) : count(binCount) {
@@ -85,6 +86,19 @@ struct SpatialBins {
         if (((_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(firstBins, lastBins))) | ~axes) & 7) == 7) {
             for (int a = 0; a < 3; ++a)
                 if (axes >> a & 1) boxes.grow(a, first[a], box);  // inside one bin: nothing to clip
+            return;
+        }
+        if (!mapping.clipTriangles) {
+            for (int a = 0; a < 3; ++a) {
+                if (!(axes >> a & 1)) continue;
+                const __m128 onAxis = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(a)));
+                for (int b = first[a]; b <= last[a]; ++b) {
+                    BuildBox part = box;
+                    if (b > first[a]) part.lower = _mm_blendv_ps(part.lower, _mm_set1_ps(mapping.position(a, b)), onAxis);
+                    if (b < last[a]) part.upper = _mm_blendv_ps(part.upper, _mm_set1_ps(mapping.position(a, b + 1)), onAxis);
+                    boxes.grow(a, b, part);
+                }
+            }
             return;
         }
         const SplitTriangle triangle = splitter.triangle(ref.prim);
