@@ -56,10 +56,18 @@ void expectAllKernelsMatchReference(const SceneAccel<N>& accel, const std::vecto
         referenceKernel<N>(isa).intersect(accel.view(), rays.data(), expected.data(), rays.size(), nullptr);
         referenceKernel<N>(isa).occluded(accel.view(), rays.data(), expectedOccluded.data(), rays.size(), nullptr);
         for (const Kernel<N>& kernel : kernelsOf(kernelTable<N>(isa))) {
-            std::vector<Hit> hits(rays.size());
-            std::vector<uint8_t> occluded(rays.size(), 7);
+            // Guard entries past the rays' answers, which no kernel may write.
+            constexpr size_t kGuard = 16;
+            const Hit guardHit{-1.0f, 2.0f, 3.0f, 123u, 456u};
+            std::vector<Hit> hits(rays.size() + kGuard, guardHit);
+            std::vector<uint8_t> occluded(rays.size() + kGuard, 7);
             kernel.intersect(accel.view(), rays.data(), hits.data(), rays.size(), nullptr);
             kernel.occluded(accel.view(), rays.data(), occluded.data(), rays.size(), nullptr);
+            for (size_t i = rays.size(); i < rays.size() + kGuard; ++i) {
+                EXPECT_TRUE(std::memcmp(&hits[i], &guardHit, sizeof(Hit)) == 0 && occluded[i] == 7)
+                    << what << " " << kernel.name << " " << isaName(isa) << " N=" << N << " wrote past its " << rays.size()
+                    << " rays, at " << i;
+            }
             size_t hitMismatches = 0, occlusionMismatches = 0;
             for (size_t i = 0; i < rays.size(); ++i) {
                 const Hit &a = hits[i], &b = expected[i];

@@ -70,6 +70,40 @@ template <int N, int K>
                           node.upperZ[i], p, tfar, active);
 }
 
+#if defined(__AVX512F__)
+/// Writes the first `count` of 16 hits, given field by field (t, u, v, primId, geomId: Hit's layout),
+/// as five 64-byte stores: Hit array dword k is field k % 5 of lane k / 5, so each store gathers its
+/// dwords from the five fields by masked permutes.
+inline void storeHits16(const vfloat16& t, const vfloat16& u, const vfloat16& v, const vint16& primId,
+                        const vint16& geomId, int count, Hit* out) {
+    static_assert(sizeof(Hit) == 20 && offsetof(Hit, primId) == 12 && offsetof(Hit, geomId) == 16);
+    struct Tables {
+        int32_t lane[5][16];      ///< [store][dword]: the lane it comes from
+        uint16_t fieldMask[5][5];  ///< [store][field]: the dwords that field fills
+    };
+    static constexpr Tables kTables = [] {
+        Tables tables{};
+        for (int k = 0; k < 80; ++k) {
+            tables.lane[k / 16][k % 16] = k / 5;
+            tables.fieldMask[k / 16][k % 5] |= uint16_t(1u << (k % 16));
+        }
+        return tables;
+    }();
+    const __m512i fields[5] = {_mm512_castps_si512(t.m), _mm512_castps_si512(u.m), _mm512_castps_si512(v.m),
+                               primId.m, geomId.m};
+    int32_t* dwords = reinterpret_cast<int32_t*>(out);
+    const int total = 5 * count;
+    for (int s = 0; s < 5 && 16 * s < total; ++s) {
+        const __m512i lanes = _mm512_loadu_si512(kTables.lane[s]);
+        __m512i x = _mm512_setzero_si512();
+        for (int f = 0; f < 5; ++f) x = _mm512_mask_permutexvar_epi32(x, kTables.fieldMask[s][f], lanes, fields[f]);
+        const int left = total - 16 * s;
+        if (left >= 16) _mm512_storeu_si512(dwords + 16 * s, x);
+        else _mm512_mask_storeu_epi32(dwords + 16 * s, __mmask16((1u << left) - 1), x);
+    }
+}
+#endif
+
 /// The hits (or occlusion) of a packet, written out: invalid lanes miss and are not occluded.
 template <int K, bool AnyHit, class UserHits>
 inline void writePacketResults(const PacketHit<K>& h, const UserHits& user, uint32_t validBits, uint32_t occludedBits,
@@ -78,6 +112,25 @@ inline void writePacketResults(const PacketHit<K>& h, const UserHits& user, uint
         for (int lane = 0; lane < count; ++lane) occludedOut[lane] = (validBits & occludedBits) >> lane & 1;
         return;
     }
+#if defined(__AVX512F__)
+    if constexpr (K == 16) {
+        const vbool16 triangle = maskFromBits16(validBits) & (h.primId != vint16(kNoPrim));
+        const vfloat16 zero(0.0f);
+        const vint16 invalid = vint16(int32_t(kInvalidId));
+        storeHits16(select(triangle, h.t, vfloat16(__builtin_huge_valf())), select(triangle, h.u, zero),
+                    select(triangle, h.v, zero), select(triangle, h.primId, invalid), select(triangle, vint16(0), invalid),
+                    count, hitsOut);
+        uint32_t userBits = validBits & ~movemask(triangle) & ((count < 32 ? 1u << count : 0u) - 1);
+        if (!userBits) return;
+        PacketLanes<K> lanes;
+        lanes.store(h);
+        for (; userBits; userBits &= userBits - 1) {
+            const int lane = __builtin_ctz(userBits);
+            if (user.geomId(lane) != kInvalidId) hitsOut[lane] = laneHit(lanes, user, lane);
+        }
+        return;
+    }
+#endif
     PacketLanes<K> lanes;
     lanes.store(h);
     // Triangle hits and misses without branches (they interleave unpredictably at silhouettes); the
