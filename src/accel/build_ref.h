@@ -78,6 +78,11 @@ struct BuildBox {
         r.bins = 0;
     }
 
+    /// All bits set in lane `axis` and none in the others: a blend mask for one axis's coordinate.
+    static __m128 axisMask(int axis) {
+        return _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(axis)));
+    }
+
     static float lane(__m128 v, int i) {
         alignas(16) float f[4];
         _mm_store_ps(f, v);

@@ -91,7 +91,7 @@ struct SpatialBins {
         if (!mapping.clipTriangles) {
             for (int a = 0; a < 3; ++a) {
                 if (!(axes >> a & 1)) continue;
-                const __m128 onAxis = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(a)));
+                const __m128 onAxis = BuildBox::axisMask(a);
                 for (int b = first[a]; b <= last[a]; ++b) {
                     BuildBox part = box;
                     if (b > first[a]) part.lower = _mm_blendv_ps(part.lower, _mm_set1_ps(mapping.position(a, b)), onAxis);

@@ -38,7 +38,7 @@ public:
             _mm_or_ps(_mm_and_ps(_mm_cmplt_ps(from, plane), _mm_cmpgt_ps(to, plane)),
                       _mm_and_ps(_mm_cmpgt_ps(from, plane), _mm_cmplt_ps(to, plane))),
             _mm_div_ps(_mm_sub_ps(plane, from), _mm_sub_ps(to, from)), plane,
-            _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(axis)))};
+            BuildBox::axisMask(axis)};
         left = right = BuildBox();
         addVertexAndEdge<0>(sides, left, right);
         addVertexAndEdge<1>(sides, left, right);

@@ -28,6 +28,8 @@ void addEngineOptions(CLI::App& app, EngineOptions& options);
 void addQualityOption(CLI::App& app, std::string& quality);
 /// The --accel choices (backends/accel_registry.h's rows) and their help, for one name or a list.
 std::vector<std::string> accelNames();
+/// The names of our wide BVHs (the rows with Accel::wideBvh), info's default.
+std::vector<std::string> wideBvhNames();
 std::string accelHelp(bool list);
 /// --instancing auto|flatten|two-level.
 void addInstancingOption(CLI::App& app, std::string& instancing);

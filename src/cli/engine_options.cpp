@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include "backends/accel_registry.h"
 #include "cli/commands.h"
@@ -61,8 +62,10 @@ Instancing instancingFor(const std::string& option, const std::vector<std::strin
     if (option == "flatten") return Instancing::Flatten;
     if (option == "two-level") {
         if (singleLevel)
-            throw InputError("--instancing", "", "the course's structures are single-level: two-level instances need "
-                                                 "--accel bvh4, bvh8 or bvh16 (or --instancing auto, which flattens for them)");
+            throw InputError("--instancing", "",
+                             fmt::format("the course's structures are single-level: two-level instances need --accel "
+                                         "{} (or --instancing auto, which flattens for them)",
+                                         fmt::join(wideBvhNames(), ", ")));
         return Instancing::TwoLevel;
     }
     return singleLevel ? Instancing::Flatten : Instancing::Auto;
@@ -74,10 +77,18 @@ std::vector<std::string> accelNames() {
     return names;
 }
 
+std::vector<std::string> wideBvhNames() {
+    std::vector<std::string> names;
+    for (const Accel& a : accels())
+        if (a.wideBvh) names.push_back(a.name);
+    return names;
+}
+
 std::string accelHelp(bool list) {
     std::string help = list ? "Acceleration structures to measure, comma-separated:" : "Acceleration structure:";
     for (const Accel& a : accels()) help += fmt::format(" {} ({});", a.name, a.description);
-    help += " the course's structures (all but the bvh rows of 4, 8 and 16) trace one ray at a time (docs/accelerators.md)";
+    help += fmt::format(" the course's structures (all but {}) trace one ray at a time (docs/accelerators.md)",
+                        fmt::join(wideBvhNames(), ", "));
     return help;
 }
 

@@ -2,6 +2,7 @@
 #include <exception>
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 
 #include "backends/backend_registry.h"
 #include "cli/commands.h"
@@ -25,7 +26,7 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
     auto instancing = std::make_shared<std::string>("auto");
     addInstancingOption(*cmd, *instancing);
     auto accel = std::make_shared<std::vector<std::string>>();
-    cmd->add_option("--accel", *accel, accelHelp(true) + " (default: bvh4,bvh8,bvh16)")
+    cmd->add_option("--accel", *accel, accelHelp(true) + fmt::format(" (default: {})", fmt::join(wideBvhNames(), ",")))
         ->check(CLI::IsMember(accelNames()))
         ->delimiter(',');
     cmd->callback([files, isa, quality, accel, instancing, &exitCode] {
@@ -39,7 +40,7 @@ void addInfoCommand(CLI::App& app, int& exitCode) {
                 try {
                     SceneDescription scene = loadSceneOrMesh(file);
                     for (const std::string& warning : scene.warnings) fmt::print(stderr, "warning: {}\n", warning);
-                    const std::vector<std::string> accels = accel->empty() ? std::vector<std::string>{"bvh4", "bvh8", "bvh16"} : *accel;
+                    const std::vector<std::string> accels = accel->empty() ? wideBvhNames() : *accel;
                     auto geometry = std::make_shared<const SceneGeometry>(scene, instancingFor(*instancing, accels));
                     size_t dropped = 0;
                     for (const TriangleMesh& m : scene.meshes) dropped += m.droppedDegenerate;

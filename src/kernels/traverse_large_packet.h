@@ -43,15 +43,16 @@ struct LargePacket {
     uint64_t anyValid = 0;  ///< sub-packets with rays still to trace
 
     /// Loads up to K * P rays; returns whether all valid ones share one direction octant. The rays of
-    /// the sub-packet four ahead are asked for meanwhile: a large packet reads its 9 KB of rays in one
+    /// the sub-packet kPrefetchAhead ahead are asked for meanwhile: a large packet reads its 9 KB of rays in one
     /// burst, which the hardware prefetcher does not see coming (`perf`: a fifth of the framed Sponza's
     /// camera-ray time went to loadPacket, most of it waiting on the rays; `packet256` 3-14% faster on
     /// the bunny and framed Sponza, ABBA on one CPU, 3-5 rounds).
     bool load(const Ray* rays, int count) {
+        constexpr int kPrefetchAhead = 4;
         subCount = (count + K - 1) / K;
         bool oneOctant = true;
         for (int s = 0; s < subCount; ++s) {
-            if ((s + 4) * K < count) prefetchLines(rays + (s + 4) * K, K * sizeof(Ray));
+            if ((s + kPrefetchAhead) * K < count) prefetchLines(rays + (s + kPrefetchAhead) * K, K * sizeof(Ray));
             valid[s] = loadPacket(rays + s * K, count - s * K < K ? count - s * K : K, packets[s], hits[s]);
             users[s] = PacketUserHits<K>(rays + s * K);
             done[s] = andNot(vbool<K>(true), valid[s]);

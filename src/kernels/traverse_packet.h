@@ -112,42 +112,43 @@ inline void writePacketResults(const PacketHit<K>& h, const UserHits& user, uint
         for (int lane = 0; lane < count; ++lane) occludedOut[lane] = (validBits & occludedBits) >> lane & 1;
         return;
     }
+    // Triangle hits and misses without branches (they interleave unpredictably at silhouettes); the
+    // rare user-primitive hits are patched after.
+    const uint32_t triangleBits = validBits & ~movemask(h.primId == vint<K>(kNoPrim));
+    uint32_t userBits = 0;
 #if defined(__AVX512F__)
     if constexpr (K == 16) {
-        const vbool16 triangle = maskFromBits16(validBits) & (h.primId != vint16(kNoPrim));
+        const vbool16 triangle = maskFromBits16(triangleBits);
         const vfloat16 zero(0.0f);
         const vint16 invalid = vint16(int32_t(kInvalidId));
         storeHits16(select(triangle, h.t, vfloat16(__builtin_huge_valf())), select(triangle, h.u, zero),
                     select(triangle, h.v, zero), select(triangle, h.primId, invalid), select(triangle, vint16(0), invalid),
                     count, hitsOut);
-        uint32_t userBits = validBits & ~movemask(triangle) & ((count < 32 ? 1u << count : 0u) - 1);
-        if (!userBits) return;
+        for (uint32_t bits = validBits & ~triangleBits; bits; bits &= bits - 1) {
+            const int lane = __builtin_ctz(bits);
+            userBits |= uint32_t(user.geomId(lane) != kInvalidId) << lane;
+        }
+    } else
+#endif
+    {
         PacketLanes<K> lanes;
         lanes.store(h);
-        for (; userBits; userBits &= userBits - 1) {
-            const int lane = __builtin_ctz(userBits);
-            if (user.geomId(lane) != kInvalidId) hitsOut[lane] = laneHit(lanes, user, lane);
+        for (int lane = 0; lane < count; ++lane) {
+            const bool triangle = triangleBits >> lane & 1;
+            Hit& out = hitsOut[lane];
+            out.t = triangle ? lanes.t[lane] : __builtin_huge_valf();
+            out.u = triangle ? lanes.u[lane] : 0.0f;
+            out.v = triangle ? lanes.v[lane] : 0.0f;
+            out.primId = triangle ? uint32_t(lanes.prim[lane]) : kInvalidId;
+            out.geomId = triangle ? 0 : kInvalidId;
+            userBits |= uint32_t(!triangle && user.geomId(lane) != kInvalidId) << lane;
         }
-        return;
+        userBits &= validBits;
     }
-#endif
+    if (!userBits) return;
     PacketLanes<K> lanes;
     lanes.store(h);
-    // Triangle hits and misses without branches (they interleave unpredictably at silhouettes); the
-    // rare user-primitive hits are patched after.
-    const uint32_t triangleBits = validBits & ~movemask(h.primId == vint<K>(kNoPrim));
-    uint32_t userBits = 0;
-    for (int lane = 0; lane < count; ++lane) {
-        const bool triangle = triangleBits >> lane & 1;
-        Hit& out = hitsOut[lane];
-        out.t = triangle ? lanes.t[lane] : __builtin_huge_valf();
-        out.u = triangle ? lanes.u[lane] : 0.0f;
-        out.v = triangle ? lanes.v[lane] : 0.0f;
-        out.primId = triangle ? uint32_t(lanes.prim[lane]) : kInvalidId;
-        out.geomId = triangle ? 0 : kInvalidId;
-        userBits |= uint32_t(!triangle && user.geomId(lane) != kInvalidId) << lane;
-    }
-    for (userBits &= validBits; userBits; userBits &= userBits - 1) {
+    for (; userBits; userBits &= userBits - 1) {
         const int lane = __builtin_ctz(userBits);
         hitsOut[lane] = laneHit(lanes, user, lane);
     }
