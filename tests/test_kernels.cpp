@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <random>
 
 #include "render/bench_rays.h"
 #include "core/fp_mode.h"
@@ -364,6 +365,49 @@ TEST(Kernels, CostsMeasureTheChosenKernel) {
                 // whose hits end them before a node, as a single ray does: here the same work.)
                 EXPECT_NE(total(costs), total(singleCosts)) << name << " " << isaName(isa);
             }
+        }
+    }
+}
+
+/// Rays that start all over a mesh and mostly escape (as bounce rays do) share few nodes: packets of
+/// them part singly (IncoherentPackets) instead of dragging each lane through the others' leaves, so
+/// their lanes enter about as many leaves as single rays do (whole: 1.6-4.2 times as many).
+TEST(Kernels, PacketsOfFarApartRaysPartSingly) {
+    FlushToZeroScope ftz;
+    SceneDescription scene;
+    scene.meshes = {makeTorus(1.0f, 0.3f, 96, 48)};
+    scene.instances.push_back({});
+    SceneAccel<8> accel(std::make_shared<const SceneGeometry>(scene));
+    const TriangleMesh& mesh = scene.meshes[0];
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<Ray> rays;
+    for (int i = 0; i < 4096; ++i) {
+        const glm::uvec3 tri = mesh.triangles[size_t(unit(rng) * float(mesh.triangles.size() - 1))];
+        const glm::vec3 a = mesh.positions[tri.x], b = mesh.positions[tri.y], c = mesh.positions[tri.z];
+        float u = unit(rng), v = unit(rng);
+        if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+        const glm::vec3 origin = a + u * (b - a) + v * (c - a);
+        const glm::vec3 normal = glm::normalize(glm::cross(b - a, c - a));
+        glm::vec3 d(unit(rng) - 0.5f, unit(rng) - 0.5f, unit(rng) - 0.5f);
+        d = glm::normalize(d + normal);  // away from the surface, mostly
+        rays.push_back({origin.x, origin.y, origin.z, d.x, d.y, d.z, 1e-4f, INFINITY});
+    }
+    auto leavesPerRay = [&](const Kernel<8>& kernel) {
+        std::vector<Hit> hits(rays.size());
+        std::vector<TraversalCost> costs(rays.size());
+        kernel.intersect(accel.view(), rays.data(), hits.data(), rays.size(), costs.data());
+        double leaves = 0;
+        for (const TraversalCost& c : costs) leaves += c.leaves;
+        return leaves / double(rays.size());
+    };
+    for (Isa isa : supportedIsas()) {
+        const KernelTable<8> table = kernelTable<8>(isa);
+        const double single = leavesPerRay(*table.find("single"));
+        for (const char* name : {"packet4", "packet8", "packet16", "packet256"}) {
+            const Kernel<8>* kernel = table.find(name);
+            if (!kernel->available()) continue;
+            EXPECT_LT(leavesPerRay(*kernel), 1.25 * single) << name << " " << isaName(isa) << ", single rays " << single;
         }
     }
 }

@@ -67,7 +67,7 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
 /// Packets of K consecutive rays.
 template <int N, int K>
 void packetIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
-    IncoherentPackets history;
+    IncoherentPackets history(scene);
     for (size_t i = 0; i < count; i += K)
         tracePacket<N, K, false>(scene, rays + i, int(count - i < K ? count - i : K), hits + i, nullptr,
                                  costs ? costs + i : nullptr, &history);
@@ -92,7 +92,7 @@ void packetOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
 template <int N>
 void largePacketIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
     constexpr int K = kMaxWidth, P = 256 / K;
-    IncoherentPackets history;
+    IncoherentPackets history(scene);
     for (size_t i = 0; i < count; i += K * P)
         traceLargePacket<N, K, P, false>(scene, rays + i, int(count - i < K * P ? count - i : K * P), hits + i, nullptr,
                                          costs ? costs + i : nullptr, &history);

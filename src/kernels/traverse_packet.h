@@ -4,12 +4,13 @@
 // entered with the rays that hit its box, culled per ray against that ray's closest hit, and left
 // to single-ray traversal once few rays remain active (Wald et al. 2001, "Interactive Rendering
 // with Coherent Ray Tracing"; Embree's hybrid packet/single-ray scheme, Benthin et al. 2012).
-// Incoherent packets whose rays mostly hit go on one ray at a time from the first node where they
-// part (IncoherentPackets). Leaves run the reference's arithmetic per lane, so results are
+// Incoherent packets whose rays mostly hit, or start far apart, go on one ray at a time from the
+// first node where they part (IncoherentPackets). Leaves run the reference's arithmetic per lane, so results are
 // bit-identical.
 #include <cstdint>
 #include <type_traits>
 
+#include "kernels/incoherent_packets.h"
 #include "kernels/ray_interval.h"
 #include "kernels/shadow_cache.h"
 #include "kernels/traverse_single.h"
@@ -18,27 +19,6 @@
 
 namespace wideray {
 inline namespace WIDERAY_ISA {
-
-/// What a batch's incoherent closest-hit packets found so far, which decides whether the next ones
-/// part singly (traversePacket): ordering each ray's children its own way pays where most rays hit
-/// something, not where most escape, which packet steps drop together (measured: rays from inside
-/// Sponza and the country kitchen, packet16 0.6-0.9x of single rays before and 0.95-1.0x parting
-/// singly; diffuse rays off framed Sponza, 97% escaping, 2.4x single rays in packets and 1.4x
-/// parting singly). Recent packets weigh most: the counts halve every 4096 rays.
-class IncoherentPackets {
-public:
-    /// Four in five of the rays traced so far hit (or none were traced yet).
-    bool partSingly() const { return 5 * hits_ >= 4 * rays_; }
-
-    void add(uint32_t rays, uint32_t hits) {
-        rays_ += rays;
-        hits_ += hits;
-        if (rays_ >= 4096) rays_ /= 2, hits_ /= 2;
-    }
-
-private:
-    uint32_t rays_ = 0, hits_ = 0;
-};
 
 /// Entry distances of the packet into a box; +inf for rays that miss it or are inactive.
 template <int K>
@@ -335,7 +315,7 @@ inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int c
     PacketCost<K, Counting> cost;
     const vbool<K> valid = loadPacket(rays, count, p, h);
     vbool<K> done = andNot(vbool<K>(true), valid);
-    const bool partSingly = !history || history->partSingly();
+    const bool partSingly = !history || history->partSingly(originSpread(p, valid));
     if (AnyHit && cache) occludeByCache(scene.leaves, *cache, p, h, done);
     const bool incoherent = traversePacket<N, K, AnyHit, Leaves>(scene, rays, p, h, user, done, partSingly, cost,
                                                                  cache ? &cache->found : nullptr);
