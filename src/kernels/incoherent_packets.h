@@ -20,7 +20,7 @@ inline namespace WIDERAY_ISA {
 /// the counts halve every 4096 rays). Escaping rays that start far apart share few nodes, though: a
 /// packet step serves one or two of them, and each lane is dragged through the leaves the others
 /// enter (bounce rays off the framed bunny, which start all over it: 14.5 leaves per ray in whole
-/// packets, 2.3 parting singly, 0.5x the single rays' speed whole). So packets whose origins spread
+/// packets, 2.3 as single rays, and 0.5x the single rays' speed). So packets whose origins spread
 /// over more than kSpreadFraction of the scene's extent part singly too; the rays of neighbouring
 /// pixels' diffuse bounces start close together and stay whole.
 class IncoherentPackets {
