@@ -74,6 +74,7 @@ struct SceneView {
     const WideNode<N>* nodes = nullptr;
     NodeRef root = NodeRef::empty();
     SceneLeaves leaves;
+    Bounds3f bounds;  ///< of the whole tree
 };
 
 } // namespace wideray

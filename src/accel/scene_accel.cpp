@@ -267,7 +267,8 @@ WideBvh<N> SceneAccel<N>::buildUser(const BvhBuildConfig& config) {
 template <int N>
 SceneView<N> SceneAccel<N>::view() const {
     return {bvh_.nodes.data(), bvh_.root,
-            {blocks_.data(), prims_.data(), userGeometries_.data(), instanceRefs_.empty() ? nullptr : &instanceTable_}};
+            {blocks_.data(), prims_.data(), userGeometries_.data(), instanceRefs_.empty() ? nullptr : &instanceTable_},
+            bvh_.bounds};
 }
 
 template <int N>

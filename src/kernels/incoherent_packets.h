@@ -12,6 +12,17 @@
 namespace wideray {
 inline namespace WIDERAY_ISA {
 
+/// How far the origins of a packet's `valid` rays spread, along the axis where they spread most.
+template <int K>
+inline float originSpread(const PacketRay<K>& p, const vbool<K>& valid) {
+    const vfloat<K> inf(__builtin_huge_valf());
+    const vfloat<K>* o[3] = {&p.ox, &p.oy, &p.oz};
+    float spread = 0.0f;
+    for (int a = 0; a < 3; ++a)
+        spread = std::max(spread, -reduceMin(select(valid, -*o[a], -inf)) - reduceMin(select(valid, *o[a], inf)));
+    return spread;
+}
+
 /// Ordering each ray's children its own way pays where most rays hit something, not where most
 /// escape, which packet steps drop together (measured: rays from inside Sponza and the country
 /// kitchen, packet16 0.6-0.9x of single rays before and 0.95-1.0x parting singly; diffuse rays off
@@ -21,16 +32,20 @@ inline namespace WIDERAY_ISA {
 /// packet step serves one or two of them, and each lane is dragged through the leaves the others
 /// enter (bounce rays off the framed bunny, which start all over it: 14.5 leaves per ray in whole
 /// packets, 2.3 as single rays, and 0.5x the single rays' speed). So packets whose origins spread
-/// over more than kSpreadFraction of the scene's extent part singly too; the rays of neighbouring
-/// pixels' diffuse bounces start close together and stay whole.
+/// over more than kSpreadFraction of the scene's largest extent part singly too; the rays of
+/// neighbouring pixels' diffuse bounces start close together and stay whole.
 class IncoherentPackets {
 public:
     template <int N>
-    explicit IncoherentPackets(const SceneView<N>& scene) : spreadLimit_(kSpreadFraction * largestExtent(scene)) {}
+    explicit IncoherentPackets(const SceneView<N>& scene)
+        : spreadLimit_(scene.bounds.empty() ? __builtin_huge_valf()
+                                            : kSpreadFraction * scene.bounds.extent()[scene.bounds.largestAxis()]) {}
 
-    /// Whether a packet of the batch whose valid rays' origins spread over `originSpread` (along the
-    /// axis where they spread most) parts singly.
-    bool partSingly(float originSpread) const { return 5 * hits_ >= 4 * rays_ || originSpread > spreadLimit_; }
+    /// Whether a packet of the batch, `valid` its rays, parts singly.
+    template <int K>
+    bool partSingly(const PacketRay<K>& p, const vbool<K>& valid) const {
+        return 5 * hits_ >= 4 * rays_ || originSpread(p, valid) > spreadLimit_;
+    }
 
     void add(uint32_t rays, uint32_t hits) {
         rays_ += rays;
@@ -45,37 +60,9 @@ private:
     // packets of diffuse rays part too (the teapot's 0.92x).
     static constexpr float kSpreadFraction = 1.0f / 8.0f;
 
-    /// The root box's largest extent (+inf for a scene of one leaf, where no packet parts).
-    template <int N>
-    static float largestExtent(const SceneView<N>& scene) {
-        if (scene.root.isLeaf()) return __builtin_huge_valf();
-        const WideNode<N>& root = scene.nodes[scene.root.index()];
-        const float* lower[3] = {root.lowerX, root.lowerY, root.lowerZ};
-        const float* upper[3] = {root.upperX, root.upperY, root.upperZ};
-        float extent = 0.0f;
-        for (int a = 0; a < 3; ++a) {
-            float lo = __builtin_huge_valf(), hi = -__builtin_huge_valf();
-            for (int i = 0; i < N; ++i)
-                if (lower[a][i] <= upper[a][i]) lo = std::min(lo, lower[a][i]), hi = std::max(hi, upper[a][i]);
-            if (lo <= hi) extent = std::max(extent, hi - lo);
-        }
-        return extent;
-    }
-
     float spreadLimit_;
     uint32_t rays_ = 0, hits_ = 0;
 };
-
-/// How far the origins of a packet's `valid` rays spread, along the axis where they spread most.
-template <int K>
-inline float originSpread(const PacketRay<K>& p, const vbool<K>& valid) {
-    const vfloat<K> inf(__builtin_huge_valf());
-    const vfloat<K>* o[3] = {&p.ox, &p.oy, &p.oz};
-    float spread = 0.0f;
-    for (int a = 0; a < 3; ++a)
-        spread = std::max(spread, -reduceMin(select(valid, -*o[a], -inf)) - reduceMin(select(valid, *o[a], inf)));
-    return spread;
-}
 
 } // namespace WIDERAY_ISA
 } // namespace wideray

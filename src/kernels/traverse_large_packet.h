@@ -43,10 +43,10 @@ struct LargePacket {
     uint64_t anyValid = 0;  ///< sub-packets with rays still to trace
 
     /// Loads up to K * P rays; returns whether all valid ones share one direction octant. The rays of
-    /// the sub-packet kPrefetchAhead ahead are asked for meanwhile: a large packet reads its 9 KB of rays in one
-    /// burst, which the hardware prefetcher does not see coming (`perf`: a fifth of the framed Sponza's
-    /// camera-ray time went to loadPacket, most of it waiting on the rays; `packet256` 3-14% faster on
-    /// the bunny and framed Sponza, ABBA on one CPU, 3-5 rounds).
+    /// the sub-packet kPrefetchAhead ahead are asked for meanwhile: a large packet reads its 9 KB of
+    /// rays in one burst, which the hardware prefetcher does not see coming (`perf`: a fifth of the
+    /// framed Sponza's camera-ray time went to loadPacket, most of it waiting on the rays; `packet256`
+    /// 3-14% faster on the bunny and framed Sponza, ABBA on one CPU, 3-5 rounds).
     bool load(const Ray* rays, int count) {
         constexpr int kPrefetchAhead = 4;
         subCount = (count + K - 1) / K;

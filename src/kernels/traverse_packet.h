@@ -5,8 +5,8 @@
 // to single-ray traversal once few rays remain active (Wald et al. 2001, "Interactive Rendering
 // with Coherent Ray Tracing"; Embree's hybrid packet/single-ray scheme, Benthin et al. 2012).
 // Incoherent packets whose rays mostly hit, or start far apart, go on one ray at a time from the
-// first node where they part (IncoherentPackets). Leaves run the reference's arithmetic per lane, so results are
-// bit-identical.
+// first node where they part (IncoherentPackets). Leaves run the reference's arithmetic per lane, so
+// results are bit-identical.
 #include <cstdint>
 #include <type_traits>
 
@@ -315,7 +315,7 @@ inline void tracePacketCounted(const SceneView<N>& scene, const Ray* rays, int c
     PacketCost<K, Counting> cost;
     const vbool<K> valid = loadPacket(rays, count, p, h);
     vbool<K> done = andNot(vbool<K>(true), valid);
-    const bool partSingly = !history || history->partSingly(originSpread(p, valid));
+    const bool partSingly = !history || history->partSingly(p, valid);
     if (AnyHit && cache) occludeByCache(scene.leaves, *cache, p, h, done);
     const bool incoherent = traversePacket<N, K, AnyHit, Leaves>(scene, rays, p, h, user, done, partSingly, cost,
                                                                  cache ? &cache->found : nullptr);
