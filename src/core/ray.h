@@ -13,6 +13,14 @@ struct TraversalCost {
     uint32_t leaves = 0;      ///< leaves entered
     uint32_t primitives = 0;  ///< primitive tests (a triangle block counts its kBlockSize slots)
     uint32_t mailboxHits = 0; ///< kd-tree and grids: tests skipped, the ray having tested the primitive before
+
+    TraversalCost& operator+=(const TraversalCost& o) {
+        nodes += o.nodes;
+        leaves += o.leaves;
+        primitives += o.primitives;
+        mailboxHits += o.mailboxHits;
+        return *this;
+    }
 };
 
 } // namespace wideray

@@ -44,12 +44,13 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
         occluded[i] = 0;
         if (!isValidRay(ray)) continue;
         const SingleRayState s = makeSingleRayState(ray);
+        const BlockRay<kBlockSize> blockRay(s.woop);
         Hit hit;
         hit.t = ray.tfar;
         ++cache.queries;
         int entry = 0;
         while (entry < ShadowCache::kBlocks && cache.blocks[entry] != ShadowCache::kEmpty &&
-               !intersectBlock<kBlockSize, true>(scene.leaves.blocks[cache.blocks[entry]], s, ray, hit))
+               !intersectBlock<kBlockSize, true>(scene.leaves.blocks[cache.blocks[entry]], blockRay, ray, hit))
             ++entry;
         if (entry < ShadowCache::kBlocks && cache.blocks[entry] != ShadowCache::kEmpty) {
             ++cache.hits;

@@ -22,13 +22,13 @@ struct SceneLeafIntersector {
     /// One ray; closest-hit updates `hit`, any-hit returns true when the leaf occludes the ray.
     /// TriW = 1 tests a block's triangles one by one (the reference), kBlockSize all at once.
     template <int TriW, bool AnyHit>
-    [[gnu::always_inline]] bool single(NodeRef leaf, const SingleRayState& s, const Ray& ray, Hit& hit,
+    [[gnu::always_inline]] bool single(NodeRef leaf, const BlockRay<TriW>& r, const Ray& ray, Hit& hit,
                                        TraversalCost& cost) const {
         ++cost.leaves;
         if (leaf.isUserLeaf()) return intersectUserLeaf<N, AnyHit>(leaves, leaf, ray, hit, cost);
         for (uint32_t b = leaf.first(); b < leaf.first() + leaf.count(); ++b) {
             cost.primitives += kBlockSize;
-            if (intersectBlock<TriW, AnyHit>(leaves.blocks[b], s, ray, hit)) {
+            if (intersectBlock<TriW, AnyHit>(leaves.blocks[b], r, ray, hit)) {
                 if (lastOccluder) *lastOccluder = b;
                 return true;
             }

@@ -62,7 +62,7 @@ template <int N, bool Ordered, class PushedFn>
 }
 
 /// Visits the leaves a ray reaches, nearest subtree first (with Ordered; otherwise in node order, which
-/// any-hit traversal prefers: any occluder will do). `leaf(ref)` returns true to stop (any-hit);
+/// any-hit traversal prefers: any occluder will do). `leaf(ref, cost)` returns true to stop (any-hit);
 /// `tfar()` is the current culling distance, which without Ordered must not change but where `leaf`
 /// stops: a pushed subtree is then never culled when popped, and entry distances are not computed.
 /// Callers mark `leaf` always_inline: as a call it costs a vzeroupper and the node test's set-up again
@@ -71,6 +71,9 @@ template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn>
 inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, const TfarFn& tfar,
                          const LeafFn& leaf, TraversalCost& cost) {
     const ChildBoxTest<N, NodeW> intersectChildren(box);
+    // Counted here and added to `cost` at the end: stores through `cost` could alias the ray's state
+    // for all the compiler knows, which then reloads the leaf test's constants at every leaf.
+    TraversalCost counted;
     SingleRayEntry stack[kStackSize<N> + N];  // room for the N entries pushNearestLast stores at once
     int sp = 0;
     stack[sp++] = {root, tnear};
@@ -79,7 +82,7 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
         if (Ordered && e.distance > tfar() * kRobustFarScale) continue;
         NodeRef ref = e.ref;
         while (!ref.isLeaf()) {
-            ++cost.nodes;
+            ++counted.nodes;
             const WideNode<N>& node = nodes[ref.index()];
             alignas(64) float tEntry[N];
             uint32_t hits;
@@ -88,9 +91,10 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
             if (hits == 0) goto pop;
             ref = descendIntoChildren<N, Ordered>(stack, sp, node, hits, tEntry, [](NodeRef) {});
         }
-        if (leaf(ref)) return;
+        if (leaf(ref, counted)) break;
     pop:;
     }
+    cost += counted;
 }
 
 /// Closest hit (AnyHit = false) or occlusion (AnyHit = true, returns whether occluded) of one valid
@@ -100,11 +104,12 @@ template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafInter
 inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray, const SingleRayState& s, Hit& hit,
                          TraversalCost& cost, uint32_t* lastOccluder = nullptr) {
     const Leaves leaves{scene.leaves, lastOccluder};
+    const BlockRay<TriW> blockRay(s.woop);
     bool occluded = false;
     traverseWide<N, NodeW, !AnyHit>(
         scene.nodes, root, s.box, ray.tnear, [&] { return hit.t; },
-        [&](NodeRef leaf) __attribute__((always_inline)) {
-            return occluded = leaves.template single<TriW, AnyHit>(leaf, s, ray, hit, cost);
+        [&](NodeRef leaf, TraversalCost& counted) __attribute__((always_inline)) {
+            return occluded = leaves.template single<TriW, AnyHit>(leaf, blockRay, ray, hit, counted);
         },
         cost);
     return occluded;

@@ -449,9 +449,8 @@ inline void traceLeafSingly(const Leaves& leaves, const Ray* rays, const StreamE
         if (!(ws.tnear[s] <= ws.tfar[s])) continue;  // occluded already
         Hit hit = slotHit(ws, s);
         TraversalCost cost;
-        SingleRayState state;  // the triangle test needs no more than this part
-        state.woop = slotWoop(ws, s);
-        const bool occluded = leaves.template single<kBlockSize, AnyHit>(e.ref, state, rays[ws.rayOf[s]], hit, cost);
+        const BlockRay<kBlockSize> blockRay(slotWoop(ws, s));
+        const bool occluded = leaves.template single<kBlockSize, AnyHit>(e.ref, blockRay, rays[ws.rayOf[s]], hit, cost);
         storeSlotResult(ws, s, hit, occluded, cost);
     }
 }

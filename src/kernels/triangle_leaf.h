@@ -11,15 +11,40 @@
 namespace wideray {
 inline namespace WIDERAY_ISA {
 
+/// One ray's constants for the test of triangle blocks, made once per traversal rather than at every
+/// leaf: the watertight constants (TriW = 1, the reference, tests triangle by triangle), or the shear
+/// and the origin on the ray's axes broadcast to TriW lanes, with the offsets of a block's coordinate
+/// arrays on those axes (a block's arrays are picked by offset, the ray's axes being scalars).
+template <int TriW>
+struct BlockRay {
+    using F = vfloat<TriW>;
+    F sx, sy, sz, ox, oy, oz;
+    int kx, ky, kz;  ///< where v0's coordinates on the axes kx, ky, kz begin in TriangleBlock::coordinates()
+
+    explicit BlockRay(const WatertightRay<float, int32_t>& w)
+        : sx(w.sx), sy(w.sy), sz(w.sz), kx(w.kx * TriW), ky(w.ky * TriW), kz(w.kz * TriW) {
+        const float o[3] = {w.ox, w.oy, w.oz};
+        ox = F(o[w.kx]);
+        oy = F(o[w.ky]);
+        oz = F(o[w.kz]);
+    }
+};
+
+template <>
+struct BlockRay<1> {
+    WatertightRay<float, int32_t> woop;
+    explicit BlockRay(const WatertightRay<float, int32_t>& w) : woop(w) {}
+};
+
 /// Tests one triangle block; closest-hit updates `hit` (and returns false), any-hit returns true
 /// at the first hit.
 template <int TriW, bool AnyHit>
-[[gnu::always_inline]] inline bool intersectBlock(const TriangleBlock<kBlockSize>& block, const SingleRayState& s,
+[[gnu::always_inline]] inline bool intersectBlock(const TriangleBlock<kBlockSize>& block, const BlockRay<TriW>& r,
                                                   const Ray& ray, Hit& hit) {
     if constexpr (TriW == 1) {
         for (int i = 0; i < kBlockSize && block.primId[i] != kInvalidId; ++i) {
             float t = 0, u = 0, v = 0;
-            bool h = intersectWatertight(s.woop, true, block.v0x[i], block.v0y[i], block.v0z[i], block.v1x[i],
+            bool h = intersectWatertight(r.woop, true, block.v0x[i], block.v0y[i], block.v0z[i], block.v1x[i],
                                          block.v1y[i], block.v1z[i], block.v2x[i], block.v2y[i], block.v2z[i],
                                          ray.tnear, hit.t, t, u, v);
             if (!h) continue;
@@ -29,22 +54,17 @@ template <int TriW, bool AnyHit>
         return false;
     } else {
         static_assert(TriW == kBlockSize);
-        // One ray: its axes are scalars, so the block's coordinate arrays are picked by offset.
         using F = vfloat<TriW>;
         using I = vint<TriW>;
-        const WatertightRay<float, int32_t>& w = s.woop;
         const float* c = block.coordinates();
-        const int kx = w.kx * TriW, ky = w.ky * TriW, kz = w.kz * TriW;
         constexpr int v1 = 3 * TriW, v2 = 6 * TriW;
-        const float o[3] = {w.ox, w.oy, w.oz};
-        const F ox(o[w.kx]), oy(o[w.ky]), oz(o[w.kz]);
         auto valid = I::loadu(block.primId) != I(int32_t(kInvalidId));
         F t(0.0f), u(0.0f), v(0.0f);
         auto h = intersectWatertightPermuted(
-            F(w.sx), F(w.sy), F(w.sz), valid, F::load(c + kx) - ox, F::load(c + ky) - oy, F::load(c + kz) - oz,
-            F::load(c + v1 + kx) - ox, F::load(c + v1 + ky) - oy, F::load(c + v1 + kz) - oz,
-            F::load(c + v2 + kx) - ox, F::load(c + v2 + ky) - oy, F::load(c + v2 + kz) - oz, F(ray.tnear),
-            F(hit.t), t, u, v);
+            r.sx, r.sy, r.sz, valid, F::load(c + r.kx) - r.ox, F::load(c + r.ky) - r.oy, F::load(c + r.kz) - r.oz,
+            F::load(c + v1 + r.kx) - r.ox, F::load(c + v1 + r.ky) - r.oy, F::load(c + v1 + r.kz) - r.oz,
+            F::load(c + v2 + r.kx) - r.ox, F::load(c + v2 + r.ky) - r.oy, F::load(c + v2 + r.kz) - r.oz,
+            F(ray.tnear), F(hit.t), t, u, v);
         uint32_t lanes = movemask(h);
         if (!lanes) return false;
         if constexpr (AnyHit) return true;
