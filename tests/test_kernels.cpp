@@ -412,6 +412,34 @@ TEST(Kernels, PacketsOfFarApartRaysPartSingly) {
     }
 }
 
+/// Shadow rays of one packet that end at different distances (toward lights at several distances):
+/// a packet's interval may cull children beyond the farthest end of its rays, never the nearest, or
+/// the longer rays would miss their occluders.
+TEST(Kernels, ShadowPacketsOfUnequalLengthFindOccludersBeyondTheShortest) {
+    FlushToZeroScope ftz;
+    SceneDescription scene;
+    scene.meshes = {makeIcosphere(4)};
+    scene.instances.push_back({});
+    SceneAccel<8> accel(std::make_shared<const SceneGeometry>(scene));
+    const glm::vec3 d = glm::normalize(glm::vec3(0.01f, 0.02f, 1.0f));
+    std::vector<Ray> rays;
+    for (int i = 0; i < 1024; ++i) {
+        const float x = 0.002f * float(i % 32) - 0.03f, y = 0.002f * float(i / 32) - 0.03f;
+        // The sphere is 4 away: the odd rays reach it, the even ones stop short.
+        rays.push_back({x, y, -5.0f, d.x, d.y, d.z, 0.0f, i % 2 ? 100.0f : 3.5f});
+    }
+    for (Isa isa : supportedIsas()) {
+        const KernelTable<8> table = kernelTable<8>(isa);
+        for (const Kernel<8>& kernel : table.rows) {
+            if (!kernel.available()) continue;
+            std::vector<uint8_t> occluded(rays.size(), 7);
+            kernel.occluded(accel.view(), rays.data(), occluded.data(), rays.size(), nullptr);
+            for (size_t i = 0; i < rays.size(); ++i)
+                ASSERT_EQ(occluded[i], i % 2) << kernel.name << " " << isaName(isa) << ", ray " << i;
+        }
+    }
+}
+
 } // namespace
 } // namespace wideray
 

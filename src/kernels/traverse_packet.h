@@ -178,6 +178,9 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
         interval = bounds.interval(p);
         byInterval = narrowEnough(interval);
     }
+    // Any-hit rays keep their tfar until they are done, so the interval also culls the children that
+    // lie beyond the farthest of them (shadow rays stop at the light).
+    const float intervalTfar = AnyHit && byInterval ? -reduceMin(select(valid, -h.t, inf)) : __builtin_huge_valf();
     // The rays in `bits` finish the subtree at `ref` one by one.
     auto finishSingly = [&](NodeRef ref, uint32_t bits) {
         PacketLanes<K> lanes;
@@ -226,7 +229,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
             uint32_t candidates = (1u << N) - 1;
             alignas(64) float intervalEntry[N];
             if (byInterval) {
-                candidates = intersectChildrenInterval<N>(node, interval, __builtin_huge_valf(), intervalEntry);
+                candidates = intersectChildrenInterval<N>(node, interval, intervalTfar, intervalEntry);
             }
             for (; candidates; candidates &= candidates - 1) {
                 const int i = __builtin_ctz(candidates);
