@@ -21,30 +21,23 @@ constexpr float kRobustFarScale = 1.0f + 1.0f / 65536.0f;
 /// planes, down at exit planes. Then t = plane * rdir - org * rdir is one FMA per plane, and the
 /// rounding of org * rdir can only move an entry earlier or an exit later; the rounding of rdir is a
 /// relative error of t (it multiplies plane - org), which kRobustFarScale covers like the FMA's own.
-/// Exit planes take the reciprocal already scaled by kRobustFarScale (and org times it), so that the
-/// scaling is not one more operation between a node's load and its hit mask: the exit distances come
-/// out scaled, and so does the ray's tfar (off that path).
 /// Zero direction components make infinite reciprocals: each plane's t is then an infinity of the
 /// right sign or NaN, and the NaN slabs drop out of the min/max.
 template <class F>
 struct SlabRay {
-    F rdx, rdy, rdz;           ///< for entry planes
-    F upX, upY, upZ;           ///< org * rdir rounded up: subtracted at entry planes
-    F farRdx, farRdy, farRdz;  ///< rdir * kRobustFarScale, for exit planes
-    F downX, downY, downZ;     ///< org * farRdir rounded down: subtracted at exit planes
+    F rdx, rdy, rdz;
+    F upX, upY, upZ;        ///< org * rdir rounded up: subtracted at entry planes
+    F downX, downY, downZ;  ///< rounded down: subtracted at exit planes
 };
 
 template <class F>
 inline SlabRay<F> makeSlabRay(F ox, F oy, F oz, F rdx, F rdy, F rdz) {
     using simd::abs;
     // |x| * 2^-23 is at least an ulp of x (and exact), so x +- it rounds to at least one ulp away.
-    const F ulpScale(0x1p-23f), farScale(kRobustFarScale);
+    const F ulpScale(0x1p-23f);
     F x = ox * rdx, y = oy * rdy, z = oz * rdz;
     F ex = abs(x) * ulpScale, ey = abs(y) * ulpScale, ez = abs(z) * ulpScale;
-    F farRdx = rdx * farScale, farRdy = rdy * farScale, farRdz = rdz * farScale;
-    F fx = ox * farRdx, fy = oy * farRdy, fz = oz * farRdz;
-    F fex = abs(fx) * ulpScale, fey = abs(fy) * ulpScale, fez = abs(fz) * ulpScale;
-    return {rdx, rdy, rdz, x + ex, y + ey, z + ez, farRdx, farRdy, farRdz, fx - fex, fy - fey, fz - fez};
+    return {rdx, rdy, rdz, x + ex, y + ey, z + ez, x - ex, y - ey, z - ez};
 }
 
 /// One ray's box test: its slab constants, and which of each axis' planes (WideNode::planes index
@@ -82,19 +75,18 @@ template <class F>
     using simd::fmsub;
     using simd::max;
     using simd::min;
-    F tx0 = fmsub(nearX, r.rdx, r.upX), tx1 = fmsub(farX, r.farRdx, r.downX);
-    F ty0 = fmsub(nearY, r.rdy, r.upY), ty1 = fmsub(farY, r.farRdy, r.downY);
-    F tz0 = fmsub(nearZ, r.rdz, r.upZ), tz1 = fmsub(farZ, r.farRdz, r.downZ);
+    F tx0 = fmsub(nearX, r.rdx, r.upX), tx1 = fmsub(farX, r.rdx, r.downX);
+    F ty0 = fmsub(nearY, r.rdy, r.upY), ty1 = fmsub(farY, r.rdy, r.downY);
+    F tz0 = fmsub(nearZ, r.rdz, r.upZ), tz1 = fmsub(farZ, r.rdz, r.downZ);
     tEntry = max(tx0, max(ty0, max(tz0, tnear)));
-    tExit = min(tx1, min(ty1, min(tz1, tfar * F(kRobustFarScale))));
+    tExit = min(tx1, min(ty1, min(tz1, tfar))) * F(kRobustFarScale);
 }
 
 /// The same slab constants broadcast to W lanes (one ray against W boxes).
 template <int W>
 inline SlabRay<simd::vfloat<W>> broadcast(const SlabRay<float>& r) {
     using F = simd::vfloat<W>;
-    return {F(r.rdx),    F(r.rdy),    F(r.rdz),    F(r.upX),   F(r.upY),   F(r.upZ),
-            F(r.farRdx), F(r.farRdy), F(r.farRdz), F(r.downX), F(r.downY), F(r.downZ)};
+    return {F(r.rdx), F(r.rdy), F(r.rdz), F(r.upX), F(r.upY), F(r.upZ), F(r.downX), F(r.downY), F(r.downZ)};
 }
 
 /// The traversal stack's sorted insert: `e` goes into stack[base, sp), kept farthest first by

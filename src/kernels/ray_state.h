@@ -82,8 +82,7 @@ inline SingleRayState laneState(const PacketRay<K>& p, int lane) {
     SingleRayState s;
     const SlabRay<vfloat<K>>& r = p.slab;
     s.box = makeBoxRay(
-        SlabRay<float>{f(r.rdx), f(r.rdy), f(r.rdz), f(r.upX), f(r.upY), f(r.upZ), f(r.farRdx), f(r.farRdy),
-                       f(r.farRdz), f(r.downX), f(r.downY), f(r.downZ)});
+        SlabRay<float>{f(r.rdx), f(r.rdy), f(r.rdz), f(r.upX), f(r.upY), f(r.upZ), f(r.downX), f(r.downY), f(r.downZ)});
     const WatertightRay<vfloat<K>, vint<K>>& w = p.woop;
     s.woop = {f(w.ox), f(w.oy), f(w.oz), i(w.kx), i(w.ky), i(w.kz), f(w.sx), f(w.sy), f(w.sz)};
     return s;
