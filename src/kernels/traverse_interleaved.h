@@ -58,7 +58,8 @@ template <int N, bool AnyHit, class Leaves>
             prefetchChild(scene, r.next);
             return true;
         }
-    } else if (leaves.template single<kBlockSize, AnyHit>(r.next, BlockRay<kBlockSize>(r.state.woop), *r.ray, r.hit, r.cost)) {
+    } else if (leaves.template single<kBlockSize, AnyHit>(r.next, BlockRay<kBlockSize>(r.state.woop), *r.ray, r.hit,
+                                                          r.cost)) {
         r.occluded = true;
         return false;
     }
