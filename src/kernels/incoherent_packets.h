@@ -19,7 +19,7 @@ inline float originSpread(const PacketRay<K>& p, const vbool<K>& valid) {
     const vfloat<K>* o[3] = {&p.ox, &p.oy, &p.oz};
     float spread = 0.0f;
     for (int a = 0; a < 3; ++a)
-        spread = std::max(spread, -reduceMin(select(valid, -*o[a], -inf)) - reduceMin(select(valid, *o[a], inf)));
+        spread = std::max(spread, reduceMax(select(valid, *o[a], inf)) - reduceMin(select(valid, *o[a], inf)));
     return spread;
 }
 

@@ -111,9 +111,9 @@ struct RayBounds {
         RayInterval iv;
         iv.neg[0] = sameOctant.negXs; iv.neg[1] = sameOctant.negYs; iv.neg[2] = sameOctant.negZs;
         for (int a = 0; a < 3; ++a) {
-            iv.oLo[a] = reduceMin(oLo[a]); iv.oHi[a] = -reduceMin(-oHi[a]);
+            iv.oLo[a] = reduceMin(oLo[a]); iv.oHi[a] = reduceMax(oHi[a]);
             // Infinite reciprocals (zero direction components) clamped, so that 0 * inf cannot appear.
-            iv.rdLo[a] = reduceMin(rLo[a]); iv.rdHi[a] = -reduceMin(-rHi[a]);
+            iv.rdLo[a] = reduceMin(rLo[a]); iv.rdHi[a] = reduceMax(rHi[a]);
             clampReciprocals(iv.rdLo[a], iv.rdHi[a]);
             iv.margin[a] = intervalMargin(iv.oLo[a], iv.oHi[a], iv.rdLo[a], iv.rdHi[a]);
         }

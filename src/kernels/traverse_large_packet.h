@@ -83,13 +83,13 @@ struct LargePacket {
             int s = __builtin_ctzll(bits);
             m = max(select(done[s], F(-__builtin_huge_valf()), hits[s].t), m);
         }
-        return -reduceMin(-m);
+        return reduceMax(m);
     }
 
     /// The farthest culling distance among the unfinished rays of sub-packet s.
     float tfarMax(int s) const {
         using F = vfloat<K>;
-        return -reduceMin(-select(done[s], F(-__builtin_huge_valf()), hits[s].t));
+        return reduceMax(select(done[s], F(-__builtin_huge_valf()), hits[s].t));
     }
 
     template <bool AnyHit>

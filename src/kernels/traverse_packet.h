@@ -180,7 +180,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
     }
     // Any-hit rays keep their tfar until they are done, so the interval also culls the children that
     // lie beyond the farthest of them (shadow rays stop at the light).
-    const float intervalTfar = AnyHit && byInterval ? -reduceMin(select(valid, -h.t, inf)) : __builtin_huge_valf();
+    const float intervalTfar = AnyHit && byInterval ? reduceMax(select(valid, h.t, -inf)) : __builtin_huge_valf();
     // The rays in `bits` finish the subtree at `ref` one by one.
     auto finishSingly = [&](NodeRef ref, uint32_t bits) {
         PacketLanes<K> lanes;

@@ -65,6 +65,12 @@ template <> struct Types<8> { using Float = vfloat8; using Int = vint8; using Bo
 template <> struct Types<16> { using Float = vfloat16; using Int = vint16; using Bool = vbool16; };
 #endif
 
+/// The largest lane of a vector: the least of its negated lanes, negated (the same value).
+template <class V>
+inline float reduceMax(const V& a) {
+    return -reduceMin(-a);
+}
+
 /// Writes the lanes of `values` selected by `mask` contiguously to out (which has room for all lanes);
 /// returns how many.
 template <class T, class V, class B>
