@@ -12,14 +12,16 @@
 namespace wideray {
 inline namespace WIDERAY_ISA {
 
-/// How far the origins of a packet's `valid` rays spread, along the axis where they spread most.
+/// How far the origins of a packet's rays spread, along the axis where they spread most; infinite for
+/// a packet with invalid lanes (paths that ended, the short last packet of a batch), which so parts
+/// singly as well: measured faster than keeping such packets whole by their valid rays' spread (the
+/// bunny's bounce rays, `packet16`, 1.03x, ABBA 2 rounds; session 24).
 template <int K>
 inline float originSpread(const PacketRay<K>& p, const vbool<K>& valid) {
-    const vfloat<K> inf(__builtin_huge_valf());
+    if (!all(valid)) return __builtin_huge_valf();
     const vfloat<K>* o[3] = {&p.ox, &p.oy, &p.oz};
     float spread = 0.0f;
-    for (int a = 0; a < 3; ++a)
-        spread = std::max(spread, reduceMax(select(valid, *o[a], inf)) - reduceMin(select(valid, *o[a], inf)));
+    for (int a = 0; a < 3; ++a) spread = std::max(spread, reduceMax(*o[a]) - reduceMin(*o[a]));
     return spread;
 }
 
