@@ -57,12 +57,11 @@ template <int N, bool AnyHit>
                                          TraversalCost& cost) {
     const InstanceRef& instance = table.instances[index];
     const Ray local = objectRay(table, instance, ray);
-    if (!isValidRay(local)) return false;
     const SceneView<N>& mesh = table.meshes<N>()[instance.mesh];
     Hit inner;
     inner.t = hit.t;
-    const bool occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, SceneLeafIntersector<N>>(
-        mesh, mesh.root, local, makeSingleRayState(local), inner, cost);
+    const bool occluded =
+        traceSingle<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, SceneLeafIntersector<N>>(mesh, local, inner, cost);
     if constexpr (AnyHit) return occluded;
     if (inner.valid()) {
         const uint32_t prim = instance.firstPrim + inner.primId;

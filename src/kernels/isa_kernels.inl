@@ -59,8 +59,8 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
             continue;
         }
         TraversalCost cost;
-        occluded[i] = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, true>(scene, scene.root, ray, s, hit, cost,
-                                                                            &cache.found);
+        occluded[i] = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, true>(
+            scene, scene.root, ray, s.box, [&] { return s.woop; }, hit, cost, &cache.found);
         cache.remember();
     }
 }

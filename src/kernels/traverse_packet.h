@@ -189,8 +189,9 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
             const int lane = __builtin_ctz(bits);
             Hit hit = laneHit(lanes, user, lane);
             TraversalCost laneCost;
+            const SingleRayState s = laneState(p, lane);
             const bool occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(
-                scene, ref, rays[lane], laneState(p, lane), hit, laneCost, lastOccluder);
+                scene, ref, rays[lane], s.box, [&] { return s.woop; }, hit, laneCost, lastOccluder);
             cost.add(lane, laneCost);
             if (occluded) {
                 lanes.t[lane] = -__builtin_huge_valf();

@@ -21,6 +21,7 @@ struct BlockRay {
     F sx, sy, sz, ox, oy, oz;
     int kx, ky, kz;  ///< where v0's coordinates on the axes kx, ky, kz begin in TriangleBlock::coordinates()
 
+    BlockRay() = default;
     explicit BlockRay(const WatertightRay<float, int32_t>& w)
         : sx(w.sx), sy(w.sy), sz(w.sz), kx(w.kx * TriW), ky(w.ky * TriW), kz(w.kz * TriW) {
         const float o[3] = {w.ox, w.oy, w.oz};
@@ -33,6 +34,7 @@ struct BlockRay {
 template <>
 struct BlockRay<1> {
     WatertightRay<float, int32_t> woop;
+    BlockRay() = default;
     explicit BlockRay(const WatertightRay<float, int32_t>& w) : woop(w) {}
 };
 
