@@ -306,6 +306,41 @@ TEST(Kernels, EdgeCases) {
     }
 }
 
+/// Every field on its own makes a ray invalid (the kernels' test of all fields at once).
+TEST(Kernels, InvalidRaysAreFoundFieldByField) {
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const Ray good{1.0f, -2.0f, 3.0f, 0.0f, 0.0f, -1.0f, 0.0f, inf};
+    EXPECT_TRUE(isValidRay(good));
+    float Ray::*directions[] = {&Ray::ox, &Ray::oy, &Ray::oz, &Ray::dx, &Ray::dy, &Ray::dz};
+    for (float Ray::*field : directions)
+        for (float bad : {nan, inf, -inf}) {
+            Ray r = good;
+            r.*field = bad;
+            EXPECT_FALSE(isValidRay(r)) << "field " << (&(r.*field) - &r.ox) << " = " << bad;
+        }
+    for (float Ray::*axis : {&Ray::dx, &Ray::dy, &Ray::dz}) {
+        Ray r = good;
+        r.dx = r.dy = r.dz = 0.0f;
+        EXPECT_FALSE(isValidRay(r)) << "zero direction";
+        r.*axis = -0x1p-100f;
+        EXPECT_TRUE(isValidRay(r)) << "direction along axis " << (&(r.*axis) - &r.dx);
+    }
+    Ray r = good;
+    r.tnear = 2.0f, r.tfar = 1.0f;
+    EXPECT_FALSE(isValidRay(r)) << "tnear > tfar";
+    r.tnear = r.tfar = 1.0f;
+    EXPECT_TRUE(isValidRay(r)) << "tnear == tfar";
+    r.tnear = -inf;
+    EXPECT_TRUE(isValidRay(r)) << "tnear = -inf";
+    r.tnear = r.tfar = inf;
+    EXPECT_FALSE(isValidRay(r)) << "tnear = inf";
+    for (float Ray::*limit : {&Ray::tnear, &Ray::tfar}) {
+        r = good;
+        r.*limit = nan;
+        EXPECT_FALSE(isValidRay(r)) << "NaN interval";
+    }
+}
+
 } // namespace
 } // namespace wideray
 
