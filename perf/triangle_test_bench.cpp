@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/ray.h"
-#include "kernels/ray_state.h"
+#include "kernels/watertight.h"
 #include "perf_inputs.h"
 
 namespace wideray::perf {
@@ -44,7 +44,7 @@ std::vector<WatertightRay<simd::vfloat<K>, simd::vint<K>>> packetsOf(const std::
     for (size_t i = 0; i < rays.size(); i += K) {
         if constexpr (K == 1) {
             const Ray& r = rays[i];
-            packets.push_back(makeSingleRayState(r).woop);
+            packets.push_back(makeWatertightRay<float, int32_t>(r.ox, r.oy, r.oz, r.dx, r.dy, r.dz));
         } else {
             alignas(64) float o[3][K], d[3][K];
             for (int k = 0; k < K; ++k) {
@@ -52,9 +52,8 @@ std::vector<WatertightRay<simd::vfloat<K>, simd::vint<K>>> packetsOf(const std::
                 o[0][k] = r.ox, o[1][k] = r.oy, o[2][k] = r.oz;
                 d[0][k] = r.dx, d[1][k] = r.dy, d[2][k] = r.dz;
             }
-            const F dx = F::load(d[0]), dy = F::load(d[1]), dz = F::load(d[2]);
-            packets.push_back(makeWatertightRay<F, simd::vint<K>>(F::load(o[0]), F::load(o[1]), F::load(o[2]), dx, dy,
-                                                                 dz, F(1.0f) / dx, F(1.0f) / dy, F(1.0f) / dz));
+            packets.push_back(makeWatertightRay<F, simd::vint<K>>(F::load(o[0]), F::load(o[1]), F::load(o[2]),
+                                                                 F::load(d[0]), F::load(d[1]), F::load(d[2])));
         }
     }
     return packets;

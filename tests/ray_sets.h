@@ -7,7 +7,7 @@
 #include "core/mesh.h"
 #include "core/ray.h"
 #include "kernels/hit_order.h"
-#include "kernels/ray_state.h"
+#include "kernels/watertight.h"
 
 namespace wideray::testing {
 
@@ -50,7 +50,7 @@ inline Hit bruteForceHit(const TriangleMesh& mesh, const Ray& ray) {
     Hit hit;
     if (!isValidRay(ray)) return hit;
     hit.t = ray.tfar;
-    auto woop = makeSingleRayState(ray).woop;
+    auto woop = makeWatertightRay<float, int32_t>(ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz);
     for (uint32_t i = 0; i < mesh.triangles.size(); ++i) {
         const glm::uvec3& tri = mesh.triangles[i];
         const glm::vec3 &a = mesh.positions[tri.x], &b = mesh.positions[tri.y], &c = mesh.positions[tri.z];

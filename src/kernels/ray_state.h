@@ -20,18 +20,13 @@ struct SingleRayState {
     WatertightRay<float, int32_t> woop;
 };
 
-/// The watertight constants of a ray whose box test is `box`.
-inline WatertightRay<float, int32_t> makeWatertightRay(const Ray& ray, const BoxRay& box) {
-    return makeWatertightRay<float, int32_t>(ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz, box.slab.rdx, box.slab.rdy,
-                                             box.slab.rdz);
-}
-
 inline BoxRay makeBoxRay(const Ray& ray) { return makeBoxRay(ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz); }
 
-inline SingleRayState makeSingleRayState(const Ray& ray) {
-    const BoxRay box = makeBoxRay(ray);
-    return {box, makeWatertightRay(ray, box)};
+inline WatertightRay<float, int32_t> makeWatertightRay(const Ray& ray) {
+    return makeWatertightRay<float, int32_t>(ray.ox, ray.oy, ray.oz, ray.dx, ray.dy, ray.dz);
 }
+
+inline SingleRayState makeSingleRayState(const Ray& ray) { return {makeBoxRay(ray), makeWatertightRay(ray)}; }
 
 template <int K>
 struct PacketRay {
@@ -150,7 +145,7 @@ inline vbool<K> loadPacket(const Ray* rays, int count, PacketRay<K>& p, PacketHi
     p.slab = makeSlabRay(p.ox, p.oy, p.oz, one / Dx, one / Dy, one / Dz);
     p.negX = p.slab.rdx < zero; p.negY = p.slab.rdy < zero; p.negZ = p.slab.rdz < zero;
     p.tnear = select(valid, tnear, inf);
-    p.woop = makeWatertightRay<F, vint<K>>(p.ox, p.oy, p.oz, Dx, Dy, Dz, p.slab.rdx, p.slab.rdy, p.slab.rdz);
+    p.woop = makeWatertightRay<F, vint<K>>(p.ox, p.oy, p.oz, Dx, Dy, Dz);
     h.t = select(valid, tfar, -inf);
     h.u = h.v = zero;
     h.primId = vint<K>(kNoPrim);

@@ -126,9 +126,8 @@ inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray
 template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector<N>>
 inline bool traceSingle(const SceneView<N>& scene, const Ray& ray, Hit& hit, TraversalCost& cost) {
     if (!isValidRay(ray)) return false;
-    const BoxRay box = makeBoxRay(ray);
-    return traceSubtree<N, NodeW, TriW, AnyHit, Leaves>(
-        scene, scene.root, ray, box, [&] { return makeWatertightRay(ray, box); }, hit, cost);
+    return traceSubtree<N, NodeW, TriW, AnyHit, Leaves>(scene, scene.root, ray, makeBoxRay(ray),
+                                                        [&] { return makeWatertightRay(ray); }, hit, cost);
 }
 
 } // namespace WIDERAY_ISA

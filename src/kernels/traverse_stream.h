@@ -65,11 +65,10 @@ inline size_t loadStream(const Ray* rays, size_t count, StreamWorkspace& ws) {
         F fields[8];
         loadRayFields<K>([&](int l) -> const Ray& { return rays[uint32_t(ws.keys[s + (l < count ? l : 0)] & kIndexMask)]; }, fields);
         F Ox = fields[0], Oy = fields[1], Oz = fields[2], Dx = fields[3], Dy = fields[4], Dz = fields[5];
-        const F rdx = F(1.0f) / Dx, rdy = F(1.0f) / Dy, rdz = F(1.0f) / Dz;
-        auto woop = makeWatertightRay<F, vint<K>>(Ox, Oy, Oz, Dx, Dy, Dz, rdx, rdy, rdz);
+        auto woop = makeWatertightRay<F, vint<K>>(Ox, Oy, Oz, Dx, Dy, Dz);
         // The arrays have room for whole vectors (capacity is a multiple of 16).
         Ox.store(ws.ox + s); Oy.store(ws.oy + s); Oz.store(ws.oz + s);
-        rdx.store(ws.rdx + s); rdy.store(ws.rdy + s); rdz.store(ws.rdz + s);
+        (F(1.0f) / Dx).store(ws.rdx + s); (F(1.0f) / Dy).store(ws.rdy + s); (F(1.0f) / Dz).store(ws.rdz + s);
         woop.kx.store(ws.kx + s); woop.ky.store(ws.ky + s); woop.kz.store(ws.kz + s);
         woop.sx.store(ws.sx + s); woop.sy.store(ws.sy + s); woop.sz.store(ws.sz + s);
         F(0.0f).store(ws.u + s); F(0.0f).store(ws.v + s);

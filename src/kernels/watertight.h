@@ -32,10 +32,8 @@ inline F permute(const F& x, const F& y, const F& z, const I& k) {
         return select(k == I(0), x, select(k == I(1), y, z));
 }
 
-/// The ray's axes and shear constants from its direction d and the reciprocals 1 / d that its box test
-/// already has: sz, 1 / d[kz], is one of them (the same division), which leaves two.
 template <class F, class I>
-inline WatertightRay<F, I> makeWatertightRay(F ox, F oy, F oz, F dx, F dy, F dz, F rdx, F rdy, F rdz) {
+inline WatertightRay<F, I> makeWatertightRay(F ox, F oy, F oz, F dx, F dy, F dz) {
     F ax = abs(dx), ay = abs(dy), az = abs(dz);
     auto xDominant = (ax >= ay) & (ax >= az);
     auto yDominant = andNot(ay >= az, xDominant);
@@ -51,7 +49,7 @@ inline WatertightRay<F, I> makeWatertightRay(F ox, F oy, F oz, F dx, F dy, F dz,
     r.kx = kxs; r.ky = kys; r.kz = kz;
     r.sx = permute(dx, dy, dz, kxs) / dkz;
     r.sy = permute(dx, dy, dz, kys) / dkz;
-    r.sz = permute(rdx, rdy, rdz, kz);
+    r.sz = F(1.0f) / dkz;
     return r;
 }
 
