@@ -99,20 +99,26 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
 
 /// Closest hit (AnyHit = false) or occlusion (AnyHit = true, returns whether occluded) of one valid
 /// ray in the subtree at `root`; `hit` holds the ray's closest hit so far (a miss at ray.tfar to begin).
-/// `woop()` gives the ray's watertight constants, asked for at the first leaf the ray enters: most
-/// rays that miss enter none, and making them costs three divisions (the framed kitchen's diffuse
-/// rays, nearly all misses, 1.4x faster with them made there). Any-hit writes the block that occludes
-/// the ray to `lastOccluder`, where given.
+/// `woop()` gives the ray's watertight constants. Closest-hit rays ask for them at the first leaf they
+/// enter: most rays that miss enter none, and making them costs three divisions (the framed kitchen's
+/// diffuse rays, nearly all misses, 1.4x faster with them made there). Any-hit rays start on surfaces
+/// and nearly all enter a leaf, where waiting for the divisions cost the bunny's shadow rays 3-4%:
+/// they make them before the traversal. Any-hit writes the block that occludes the ray to
+/// `lastOccluder`, where given.
 template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector<N>, class WoopFn>
 inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray, const BoxRay& box, const WoopFn& woop,
                          Hit& hit, TraversalCost& cost, uint32_t* lastOccluder = nullptr) {
     const Leaves leaves{scene.leaves, lastOccluder};
     BlockRay<TriW> blockRay;
     bool blockRayMade = false, occluded = false;
+    if constexpr (AnyHit) {
+        blockRay = BlockRay<TriW>(woop());
+        blockRayMade = true;
+    }
     traverseWide<N, NodeW, !AnyHit>(
         scene.nodes, root, box, ray.tnear, [&] { return hit.t; },
         [&](NodeRef leaf, TraversalCost& counted) __attribute__((always_inline)) {
-            if (!blockRayMade) {
+            if (!AnyHit && !blockRayMade) {
                 blockRay = BlockRay<TriW>(woop());
                 blockRayMade = true;
             }
