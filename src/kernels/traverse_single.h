@@ -111,17 +111,15 @@ inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray
     const Leaves leaves{scene.leaves, lastOccluder};
     BlockRay<TriW> blockRay;
     bool blockRayMade = false, occluded = false;
-    if constexpr (AnyHit) {
+    auto makeBlockRay = [&] {
         blockRay = BlockRay<TriW>(woop());
         blockRayMade = true;
-    }
+    };
+    if constexpr (AnyHit) makeBlockRay();
     traverseWide<N, NodeW, !AnyHit>(
         scene.nodes, root, box, ray.tnear, [&] { return hit.t; },
         [&](NodeRef leaf, TraversalCost& counted) __attribute__((always_inline)) {
-            if (!AnyHit && !blockRayMade) {
-                blockRay = BlockRay<TriW>(woop());
-                blockRayMade = true;
-            }
+            if (!AnyHit && !blockRayMade) makeBlockRay();
             return occluded = leaves.template single<TriW, AnyHit>(leaf, blockRay, ray, hit, counted);
         },
         cost);
