@@ -10,28 +10,40 @@ inline namespace WIDERAY_ISA {
 namespace {
 
 /// One ray at a time: NodeW children and TriW triangles per box and triangle test. NodeW = TriW = 1
-/// is the reference (plain scalar loops).
-template <int N, int NodeW, int TriW>
-void singleIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
-    for (size_t i = 0; i < count; ++i) {
+/// is the reference (plain scalar loops, each ray's constants made on their own); the SIMD kernels
+/// make their rays' constants kMaxWidth at a time (forEachRayState).
+template <int N, int NodeW, int TriW, bool AnyHit, class Visit>
+void forEachSingleRay(const SceneView<N>& scene, const Ray* rays, size_t count, TraversalCost* costs, const Visit& visit) {
+    auto trace = [&](size_t i, const SingleRayState* s) {
         TraversalCost cost;
         Hit hit;
         hit.t = rays[i].tfar;
-        traceSingle<N, NodeW, TriW, false>(scene, rays[i], hit, cost);
-        hits[i] = hit.valid() ? hit : Hit{};
+        bool occluded = false;
+        if constexpr (NodeW == 1) occluded = traceSingle<N, NodeW, TriW, AnyHit>(scene, rays[i], hit, cost);
+        else if (s)
+            occluded = traceSubtree<N, NodeW, TriW, AnyHit>(scene, scene.root, rays[i], s->box, [&] { return s->woop; },
+                                                            hit, cost);
+        visit(i, hit, occluded);
         if (costs) costs[i] = cost;
-    }
+    };
+    if constexpr (NodeW == 1)
+        for (size_t i = 0; i < count; ++i) trace(i, nullptr);
+    else
+        forEachRayState<kMaxWidth>(rays, count, trace);
+}
+
+template <int N, int NodeW, int TriW>
+void singleIntersect(const SceneView<N>& scene, const Ray* rays, Hit* hits, size_t count, TraversalCost* costs) {
+    forEachSingleRay<N, NodeW, TriW, false>(scene, rays, count, costs, [&](size_t i, const Hit& hit, bool) {
+        hits[i] = hit.valid() ? hit : Hit{};
+    });
 }
 
 template <int N, int NodeW, int TriW>
 void singleOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count, TraversalCost* costs) {
-    for (size_t i = 0; i < count; ++i) {
-        TraversalCost cost;
-        Hit hit;
-        hit.t = rays[i].tfar;
-        occluded[i] = traceSingle<N, NodeW, TriW, true>(scene, rays[i], hit, cost) ? 1 : 0;
-        if (costs) costs[i] = cost;
-    }
+    forEachSingleRay<N, NodeW, TriW, true>(scene, rays, count, costs, [&](size_t i, const Hit&, bool o) {
+        occluded[i] = o ? 1 : 0;
+    });
 }
 
 /// Any-hit with the shadow cache: the cached blocks first (the latest occluder first), then a
@@ -39,11 +51,11 @@ void singleOccluded(const SceneView<N>& scene, const Ray* rays, uint8_t* occlude
 template <int N>
 void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* occluded, size_t count,
                           ShadowCache& cache) {
-    for (size_t i = 0; i < count; ++i) {
+    forEachRayState<kMaxWidth>(rays, count, [&](size_t i, const SingleRayState* state) {
         const Ray& ray = rays[i];
         occluded[i] = 0;
-        if (!isValidRay(ray)) continue;
-        const SingleRayState s = makeSingleRayState(ray);
+        if (!state) return;
+        const SingleRayState& s = *state;
         const BlockRay<kBlockSize> blockRay(s.woop);
         Hit hit;
         hit.t = ray.tfar;
@@ -56,13 +68,13 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
             ++cache.hits;
             cache.promote(entry);
             occluded[i] = 1;
-            continue;
+            return;
         }
         TraversalCost cost;
         occluded[i] = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, true>(
             scene, scene.root, ray, s.box, [&] { return s.woop; }, hit, cost, &cache.found);
         cache.remember();
-    }
+    });
 }
 
 /// Packets of K consecutive rays.

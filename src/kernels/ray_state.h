@@ -124,9 +124,10 @@ template <int K, class RayAt>
     for (int f = 0; f < 8; ++f) fields[f] = fromQuarters<K>(quarters[f]);
 }
 
-/// Loads up to K rays; invalid and missing lanes get tnear = +inf, tfar = -inf and stay inactive.
+/// The constants of up to K rays: origins, tnear, slab and watertight constants; returns the valid
+/// lanes (isValidRay lane by lane). Invalid and missing lanes get tnear = +inf, and `tfar` -inf.
 template <int K>
-inline vbool<K> loadPacket(const Ray* rays, int count, PacketRay<K>& p, PacketHit<K>& h) {
+inline vbool<K> loadRays(const Ray* rays, int count, PacketRay<K>& p, vfloat<K>& tfarOut) {
     using F = vfloat<K>;
     F fields[8];
     loadRayFields<K>([&](int lane) -> const Ray& { return rays[lane < count ? lane : 0]; }, fields);
@@ -146,12 +147,44 @@ inline vbool<K> loadPacket(const Ray* rays, int count, PacketRay<K>& p, PacketHi
     p.negX = p.slab.rdx < zero; p.negY = p.slab.rdy < zero; p.negZ = p.slab.rdz < zero;
     p.tnear = select(valid, tnear, inf);
     p.woop = makeWatertightRay<F, vint<K>>(p.ox, p.oy, p.oz, Dx, Dy, Dz);
-    h.t = select(valid, tfar, -inf);
-    h.u = h.v = zero;
+    tfarOut = select(valid, tfar, -inf);
+    return valid;
+}
+
+/// Loads up to K rays as a packet (loadRays) with its hits so far (none, at tfar) and its kind
+/// (classifyOctant, classifyAxes); invalid and missing lanes stay inactive.
+template <int K>
+inline vbool<K> loadPacket(const Ray* rays, int count, PacketRay<K>& p, PacketHit<K>& h) {
+    const vbool<K> valid = loadRays(rays, count, p, h.t);
+    h.u = h.v = vfloat<K>(0.0f);
     h.primId = vint<K>(kNoPrim);
     classifyOctant(p, movemask(valid));
     classifyAxes(p, movemask(valid));
     return valid;
+}
+
+/// Calls visit(i, &state) for each valid ray i of rays[0, count) with its single-ray state, and
+/// visit(i, nullptr) for the invalid ones. The states are made K rays at a time in SIMD (loadRays,
+/// laneState): the bits of makeSingleRayState without each ray's six divisions and its choice of
+/// axes. Measured against making them ray by ray (`wideray bench`, one thread, 512x512, both in one
+/// run): `single` 1.06-1.46x faster on shadow rays, 1.03-1.14x on diffuse and bounce rays, 0.98-1.09x
+/// on camera rays (the kitchen, the bunny, the coffee maker, Suzanne, the Sponza interior).
+template <int K, class Visit>
+inline void forEachRayState(const Ray* rays, size_t count, const Visit& visit) {
+    for (size_t first = 0; first < count; first += K) {
+        const int n = int(count - first < size_t(K) ? count - first : size_t(K));
+        PacketRay<K> p;
+        vfloat<K> tfar;
+        const uint32_t valid = movemask(loadRays(rays + first, n, p, tfar));
+        for (int lane = 0; lane < n; ++lane) {
+            if (valid >> lane & 1) {
+                const SingleRayState s = laneState(p, lane);
+                visit(first + size_t(lane), &s);
+            } else {
+                visit(first + size_t(lane), static_cast<const SingleRayState*>(nullptr));
+            }
+        }
+    }
 }
 
 /// The hit registers of a packet lane by lane.

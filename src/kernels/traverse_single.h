@@ -99,7 +99,8 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
 
 /// Closest hit (AnyHit = false) or occlusion (AnyHit = true, returns whether occluded) of one valid
 /// ray in the subtree at `root`; `hit` holds the ray's closest hit so far (a miss at ray.tfar to begin).
-/// `woop()` gives the ray's watertight constants. Closest-hit rays ask for them at the first leaf they
+/// `woop()` gives the ray's watertight constants (the SIMD kernels have them made already,
+/// forEachRayState; traceSingle makes them). Closest-hit rays ask for them at the first leaf they
 /// enter: most rays that miss enter none, and making them costs three divisions (the framed kitchen's
 /// diffuse rays, nearly all misses, 1.4x faster with them made there). Any-hit rays start on surfaces
 /// and nearly all enter a leaf, where waiting for the divisions cost the bunny's shadow rays 3-4%:
