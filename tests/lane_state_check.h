@@ -9,22 +9,15 @@
 namespace wideray::test {
 inline namespace WIDERAY_ISA {
 
-/// How many valid rays of `rays`, loaded as packets of this ISA's width, have a lane state that
-/// differs in any bit from makeSingleRayState of the ray.
+/// How many valid rays of `rays` have a state from forEachRayState (made this ISA's width of rays at a
+/// time, as the `single` kernels make them) that differs in any bit from makeSingleRayState of the ray.
 inline int laneStateMismatches(const Ray* rays, int count) {
-    constexpr int K = kMaxWidth;
     int mismatches = 0;
-    for (int first = 0; first < count; first += K) {
-        const int n = count - first < K ? count - first : K;
-        PacketRay<K> p;
-        PacketHit<K> h;
-        const uint32_t valid = movemask(loadPacket(rays + first, n, p, h));
-        for (int lane = 0; lane < n; ++lane) {
-            if (!(valid >> lane & 1)) continue;
-            const SingleRayState fromPacket = laneState(p, lane), own = makeSingleRayState(rays[first + lane]);
-            mismatches += std::memcmp(&fromPacket, &own, sizeof(SingleRayState)) != 0;
-        }
-    }
+    forEachRayState<kMaxWidth>(rays, size_t(count), [&](size_t i, const SingleRayState* fromLanes) {
+        if (!fromLanes) return;
+        const SingleRayState own = makeSingleRayState(rays[i]);
+        mismatches += std::memcmp(fromLanes, &own, sizeof(SingleRayState)) != 0;
+    });
     return mismatches;
 }
 

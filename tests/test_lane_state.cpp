@@ -36,8 +36,8 @@ std::vector<Ray> awkwardRays() {
 }
 
 /// Packets hand rays over to single-ray traversal with each lane's state taken from the packet's
-/// (laneState); it must be makeSingleRayState's to the bit, or the handed-over rays would not give
-/// the reference's hits.
+/// (laneState), and the `single` kernels take their rays' states the same way (forEachRayState); it
+/// must be makeSingleRayState's to the bit, or those rays would not give the reference's hits.
 TEST(LaneState, EqualsSingleRayStateOnEveryIsa) {
     const std::vector<Ray> rays = awkwardRays();
     EXPECT_EQ(laneStateMismatches(rays.data(), int(rays.size())), 0);
