@@ -1,10 +1,10 @@
-// Closest-hit traversal of the 8-wide BVH (and of the 16-wide one, as bvh16_<kernel>), one kernel at a
-// time on one thread: the scalar reference and every kernel of the best ISA this CPU has (the rows of
-// kernels/kernel_registry.h), on the primary,
-// diffuse and bounce rays of `wideray bench` (render/bench_rays.h) for the Stanford bunny, or a generated torus
-// when the shared meshes are absent. WIDERAY_TRAVERSAL_INPUT names another scene file or mesh (an
-// interior scene, say: `WIDERAY_TRAVERSAL_INPUT=scenes/sponza_interior.json wideray_perf`);
-// WIDERAY_TRAVERSAL_QUALITY=high traces the spatial-split build instead of the fast one.
+// Traversal of the 8-wide BVH (and of the 16-wide one, as bvh16_<kernel>), one kernel at a time on one
+// thread: the scalar reference and every kernel of the best ISA this CPU has (the rows of
+// kernels/kernel_registry.h), on the primary, shadow (any-hit), diffuse and bounce rays of `wideray
+// bench` (render/bench_rays.h) for the Stanford bunny, or a generated torus when the shared meshes are
+// absent. WIDERAY_TRAVERSAL_INPUT names another scene file or mesh (an interior scene, say:
+// `WIDERAY_TRAVERSAL_INPUT=scenes/sponza_interior.json wideray_perf`); WIDERAY_TRAVERSAL_QUALITY=high
+// traces the spatial-split build instead of the fast one.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -79,10 +79,13 @@ void traverse(benchmark::State& state, Kernel<N> kernel, RayKind kind) {
     const TraversalInputs& in = inputs();
     const std::vector<Ray>& rays = in.rays.of(kind);
     std::vector<Hit> hits(rays.size());
+    std::vector<uint8_t> occluded(rays.size());
     SceneView<N> view = bvhOfWidth<N>().accel().view();
     for (auto _ : state) {
-        kernel.intersect(view, rays.data(), hits.data(), rays.size(), nullptr);
+        if (kind == RayKind::Shadow) kernel.occluded(view, rays.data(), occluded.data(), rays.size(), nullptr);
+        else kernel.intersect(view, rays.data(), hits.data(), rays.size(), nullptr);
         benchmark::DoNotOptimize(hits.data());
+        benchmark::DoNotOptimize(occluded.data());
     }
     state.counters["rays/s"] = benchmark::Counter(double(rays.size()) * double(state.iterations()),
                                                   benchmark::Counter::kIsRate);
@@ -94,7 +97,7 @@ void registerKernels(const std::string& prefix) {
     const Isa isa = bestIsa();
     for (const Kernel<N>& k : kernelTable<N>(isa).rows)
         if (k.available()) kernels.push_back({k, prefix + k.name + "_" + isaName(isa)});
-    for (RayKind kind : {RayKind::Primary, RayKind::Diffuse, RayKind::Bounce})
+    for (RayKind kind : {RayKind::Primary, RayKind::Shadow, RayKind::Diffuse, RayKind::Bounce})
         for (const auto& [kernel, name] : kernels)
             benchmark::RegisterBenchmark(("traversal/" + inputName() + "/" + rayKindName(kind) + "/" + name).c_str(),
                                          traverse<N>, kernel, kind)
