@@ -8,7 +8,6 @@
 // first node where they part (IncoherentPackets). Leaves run the reference's arithmetic per lane, so
 // results are bit-identical.
 #include <cstdint>
-#include <type_traits>
 
 #include "kernels/incoherent_packets.h"
 #include "kernels/ray_interval.h"
@@ -152,21 +151,19 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
     const F inf(__builtin_huge_valf());
     const vbool<K> valid = andNot(vbool<K>(true), done);
 
-    // Closest hit keeps per ray where it enters a subtree, to cull by the hits found later. Any-hit
-    // keeps only which rays enter: a ray's tfar changes only when it is occluded, and then it is done.
-    using Lanes = std::conditional_t<AnyHit, uint32_t, F>;
-    struct alignas(AnyHit ? alignof(NodeRef) : 64) Entry {
-        Lanes lanes;     ///< closest hit: per ray, its entry (+inf: it does not enter); any-hit: the rays that enter
+    // A subtree waits on the stack with the rays that enter its box, and (closest hit) the nearest of
+    // their entries, or the interval's entry, which is below each of theirs: when it is popped, the
+    // rays whose hits are nearer than that bound cannot find a nearer one there. (Any-hit rays keep
+    // their tfar until they are done.) Each ray's own entry, kept instead, culls a few more rays at
+    // the cost of a K-wide entry on the stack (docs/performance-analysis.md, session 28).
+    struct Entry {
+        uint32_t lanes;  ///< the rays that enter
         NodeRef ref;
-        float distance;  ///< the nearest ray's entry (or the interval's, below it), which the stack is sorted by
-    };
-    auto lanesOf = [&](const F& entry) -> Lanes {
-        if constexpr (AnyHit) return movemask(entry < inf);
-        else return entry;
+        float distance;  ///< closest hit: the stack's order, and the bound its rays are culled by
     };
     Entry stack[kStackSize<N>];
     int sp = 0;
-    if (any(valid)) stack[sp++] = {lanesOf(select(valid, p.tnear, inf)), scene.root, 0.0f};
+    if (any(valid)) stack[sp++] = {movemask(valid), scene.root, -__builtin_huge_valf()};
     // A coherent packet first tests each node's children by its rays' interval, and each ray only
     // against the children that the interval enters (as Embree's coherent packets do): the per-ray
     // results are the same, with fewer per-ray tests.
@@ -207,7 +204,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
         Entry e = stack[--sp];
         vbool<K> active;
         if constexpr (AnyHit) active = maskFromBits<K>(e.lanes & ~movemask(done));
-        else active = e.lanes <= h.t * F(kRobustFarScale);
+        else active = maskFromBits<K>(e.lanes) & (F(e.distance) <= h.t * F(kRobustFarScale));
         const uint32_t activeBits = movemask(active);
         if (!activeBits) continue;
         if (__builtin_popcount(activeBits) <= switchToSingle) {
@@ -223,8 +220,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
             // others sorted by that entry, farthest first (any-hit: any occluder will do, so no order
             // is kept).
             // The nearest so far waits in registers rather than on the stack.
-            Entry nearest;
-            if constexpr (AnyHit) nearest = {};  // found guards every use; g++ cannot tell for a mask
+            Entry nearest{};
             bool found = false;
             const int base = sp;
             uint32_t candidates = (1u << N) - 1;
@@ -242,7 +238,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
                 // without a horizontal minimum per child).
                 float distance = 0.0f;
                 if constexpr (!AnyHit) distance = byInterval ? intervalEntry[i] : reduceMin(entry);
-                const Entry e{lanesOf(entry), node.child[i], distance};
+                const Entry e{movemask(entry < inf), node.child[i], distance};
                 if (!found) {
                     nearest = e;
                     found = true;
@@ -262,15 +258,14 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
             // its rays go on one by one from here, each in its own order.
             if constexpr (!AnyHit)
                 if (partSingly && !byInterval && sp > base) {
-                    uint32_t entered = movemask(nearest.lanes < inf);
-                    for (int k = base; k < sp; ++k) entered |= movemask(stack[k].lanes < inf);
+                    uint32_t entered = nearest.lanes;
+                    for (int k = base; k < sp; ++k) entered |= stack[k].lanes;
                     sp = base;
                     finishSingly(ref, entered);
                     goto pop;
                 }
             ref = nearest.ref;
-            if constexpr (AnyHit) active = maskFromBits<K>(nearest.lanes);
-            else active = nearest.lanes < inf;
+            active = maskFromBits<K>(nearest.lanes);
         }
         {
             const vbool<K> occluded = leaves.template packet<K, AnyHit>(ref, p, active, h, user, cost);
