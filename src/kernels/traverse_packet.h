@@ -1,9 +1,10 @@
 #pragma once
 // Packet traversal: K rays (a 2x2, 4x2 or 4x4 pixel block for K = 4, 8, 16) walk the wide BVH
 // together. Each child box is tested against all active rays in one K-wide operation; a subtree is
-// entered with the rays that hit its box, culled per ray against that ray's closest hit, and left
-// to single-ray traversal once few rays remain active (Wald et al. 2001, "Interactive Rendering
-// with Coherent Ray Tracing"; Embree's hybrid packet/single-ray scheme, Benthin et al. 2012).
+// entered with the rays that hit its box, less those whose closest hit lies before the subtree's
+// nearest entry, and left to single-ray traversal once few rays remain active (Wald et al. 2001,
+// "Interactive Rendering with Coherent Ray Tracing"; Embree's hybrid packet/single-ray scheme,
+// Benthin et al. 2012).
 // Incoherent packets whose rays mostly hit, or start far apart, go on one ray at a time from the
 // first node where they part (IncoherentPackets). Leaves run the reference's arithmetic per lane, so
 // results are bit-identical.
