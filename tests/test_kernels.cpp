@@ -49,6 +49,23 @@ std::vector<Kernel<N>> kernelsOf(const KernelTable<N>& t) {
     return all;
 }
 
+/// The torus the generated-mesh tests trace (one instance of it, no camera or light set).
+SceneDescription torusScene() {
+    SceneDescription scene;
+    scene.meshes = {makeTorus(1.0f, 0.3f, 96, 48)};
+    scene.instances.push_back({});
+    return scene;
+}
+
+/// The work per ray of a kernel's closest-hit traversal of `rays`.
+std::vector<TraversalCost> closestHitCosts(const Kernel<8>& kernel, const SceneAccel<8>& accel,
+                                           const std::vector<Ray>& rays) {
+    std::vector<Hit> hits(rays.size());
+    std::vector<TraversalCost> costs(rays.size());
+    kernel.intersect(accel.view(), rays.data(), hits.data(), rays.size(), costs.data());
+    return costs;
+}
+
 template <int N>
 void expectAllKernelsMatchReference(const SceneAccel<N>& accel, const std::vector<Ray>& rays, const char* what) {
     for (Isa isa : supportedIsas()) {
@@ -178,9 +195,7 @@ TEST(Kernels, MatchReferenceOnDefaultScene) {
 }
 
 TEST(Kernels, MatchReferenceOnGeneratedMeshes) {
-    SceneDescription scene;
-    scene.meshes = {makeTorus(1.0f, 0.3f, 96, 48)};
-    scene.instances.push_back({});
+    SceneDescription scene = torusScene();
     scene.camera.position = {0.5f, 2.0f, 3.0f};
     scene.lights.push_back({});
     scene.lights[0].position = {1.0f, 3.0f, 1.0f};
@@ -410,9 +425,7 @@ TEST(Kernels, CostsMeasureTheChosenKernel) {
 /// while rays without a hit still entered every subtree a packet popped).
 TEST(Kernels, PacketsOfFarApartRaysPartSingly) {
     FlushToZeroScope ftz;
-    SceneDescription scene;
-    scene.meshes = {makeTorus(1.0f, 0.3f, 96, 48)};
-    scene.instances.push_back({});
+    const SceneDescription scene = torusScene();
     SceneAccel<8> accel(std::make_shared<const SceneGeometry>(scene));
     const TriangleMesh& mesh = scene.meshes[0];
     std::mt19937 rng(5);
@@ -430,11 +443,8 @@ TEST(Kernels, PacketsOfFarApartRaysPartSingly) {
         rays.push_back({origin.x, origin.y, origin.z, d.x, d.y, d.z, 1e-4f, INFINITY});
     }
     auto leavesPerRay = [&](const Kernel<8>& kernel) {
-        std::vector<Hit> hits(rays.size());
-        std::vector<TraversalCost> costs(rays.size());
-        kernel.intersect(accel.view(), rays.data(), hits.data(), rays.size(), costs.data());
         double leaves = 0;
-        for (const TraversalCost& c : costs) leaves += c.leaves;
+        for (const TraversalCost& c : closestHitCosts(kernel, accel, rays)) leaves += c.leaves;
         return leaves / double(rays.size());
     };
     for (Isa isa : supportedIsas()) {
@@ -456,18 +466,13 @@ TEST(Kernels, PacketsOfFarApartRaysPartSingly) {
 /// 16-wide packets: 18.1 per ray, 5.8 since).
 TEST(Kernels, PacketRaysEnterOnlyTheLeavesTheyReach) {
     FlushToZeroScope ftz;
-    SceneDescription scene;
-    scene.meshes = {makeTorus(1.0f, 0.3f, 96, 48)};
-    scene.instances.push_back({});
+    SceneDescription scene = torusScene();
     scene.camera.position = {0.3f, 2.5f, 1.5f};  // the hole and the background beside the ring
     SceneAccel<8> accel(std::make_shared<const SceneGeometry>(scene));
     const std::vector<Ray> rays = primaryRays(scene, 96, 96);
     auto leaves = [&](const Kernel<8>& kernel) {
-        std::vector<Hit> hits(rays.size());
-        std::vector<TraversalCost> costs(rays.size());
-        kernel.intersect(accel.view(), rays.data(), hits.data(), rays.size(), costs.data());
-        std::vector<uint32_t> out(rays.size());
-        for (size_t i = 0; i < rays.size(); ++i) out[i] = costs[i].leaves;
+        std::vector<uint32_t> out;
+        for (const TraversalCost& c : closestHitCosts(kernel, accel, rays)) out.push_back(c.leaves);
         return out;
     };
     for (Isa isa : supportedIsas()) {
