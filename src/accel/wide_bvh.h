@@ -2,6 +2,7 @@
 // The N-wide BVH that every kernel traverses: all children of a node are described inside the node,
 // child boxes stored per axis (SoA) so that one SIMD operation tests all N children, and the inner
 // children of a node are stored next to each other in the node array.
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -42,15 +43,15 @@ struct alignas(64) WideNode {
     float lowerX[N], upperX[N], lowerY[N], upperY[N], lowerZ[N], upperZ[N];
     NodeRef child[N];
 
-    /// Bounds of child i, e.g. lower(0, i) = lowerX[i]. Empty slots are [+inf, -inf].
-    const float* planes(int axis, bool upper) const {
-        const float* p[6] = {lowerX, upperX, lowerY, upperY, lowerZ, upperZ};
-        return p[2 * axis + (upper ? 1 : 0)];
-    }
+    /// The children's lower or upper bounds on one axis (planes(0, false) = lowerX; empty slots are
+    /// [+inf, -inf]). The six arrays lie one after another: an offset, where a table of the six
+    /// pointers made the compiler store it on the stack at every call and load it back before the node.
+    const float* planes(int axis, bool upper) const { return lowerX + N * (2 * axis + (upper ? 1 : 0)); }
 };
 static_assert(sizeof(WideNode<4>) == 128);
 static_assert(sizeof(WideNode<8>) == 256);
 static_assert(sizeof(WideNode<16>) == 448);
+static_assert(offsetof(WideNode<8>, upperZ) == 5 * 8 * sizeof(float), "WideNode::planes: one array after another");
 
 template <int N>
 struct WideBvh {
