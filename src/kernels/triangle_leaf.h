@@ -91,13 +91,16 @@ template <int K, bool AnyHit>
         F t = h.t, u = h.u, v = h.v;
         vbool<K> hit;
         if (p.uniformAxes) {
-            const float v0[3] = {block.v0x[j], block.v0y[j], block.v0z[j]};
-            const float v1[3] = {block.v1x[j], block.v1y[j], block.v1z[j]};
-            const float v2[3] = {block.v2x[j], block.v2y[j], block.v2z[j]};
-            hit = intersectWatertightPermuted(p.woop.sx, p.woop.sy, p.woop.sz, active, F(v0[p.kx]) - p.okx,
-                                              F(v0[p.ky]) - p.oky, F(v0[p.kz]) - p.okz, F(v1[p.kx]) - p.okx,
-                                              F(v1[p.ky]) - p.oky, F(v1[p.kz]) - p.okz, F(v2[p.kx]) - p.okx,
-                                              F(v2[p.ky]) - p.oky, F(v2[p.kz]) - p.okz, p.tnear, h.t, t, u, v);
+            // Triangle j's coordinates on the packet's axes, read from the block by offset (an array of
+            // the vertex's three coordinates indexed by axis went through the stack).
+            constexpr int M = kBlockSize;
+            const float* c = block.coordinates() + j;
+            const int x = p.kx * M, y = p.ky * M, z = p.kz * M;
+            const float *c0 = c, *c1 = c + 3 * M, *c2 = c + 6 * M;
+            hit = intersectWatertightPermuted(p.woop.sx, p.woop.sy, p.woop.sz, active, F(c0[x]) - p.okx,
+                                              F(c0[y]) - p.oky, F(c0[z]) - p.okz, F(c1[x]) - p.okx,
+                                              F(c1[y]) - p.oky, F(c1[z]) - p.okz, F(c2[x]) - p.okx,
+                                              F(c2[y]) - p.oky, F(c2[z]) - p.okz, p.tnear, h.t, t, u, v);
         } else {
             hit = intersectWatertight(p.woop, active, F(block.v0x[j]), F(block.v0y[j]), F(block.v0z[j]),
                                       F(block.v1x[j]), F(block.v1y[j]), F(block.v1z[j]), F(block.v2x[j]),
