@@ -51,7 +51,9 @@ struct alignas(64) WideNode {
 static_assert(sizeof(WideNode<4>) == 128);
 static_assert(sizeof(WideNode<8>) == 256);
 static_assert(sizeof(WideNode<16>) == 448);
-static_assert(offsetof(WideNode<8>, upperZ) == 5 * 8 * sizeof(float), "WideNode::planes: one array after another");
+static_assert(offsetof(WideNode<8>, upperZ) == 5 * 8 * sizeof(float) &&
+                  offsetof(WideNode<16>, upperZ) == 5 * 16 * sizeof(float),
+              "WideNode::planes: the six arrays lie one after another");
 
 template <int N>
 struct WideBvh {
