@@ -136,7 +136,8 @@ template <int P>
 struct SubPacketIntervals {
     static constexpr int W = P < kMaxWidth ? P : kMaxWidth;
     using F = vfloat<W>;
-    alignas(64) float oLo[3][P], oHi[3][P], rdLo[3][P], rdHi[3][P], margin[3][P];
+    /// Origin bounds as RayInterval::oNear and oFar, reciprocal direction bounds, margins.
+    alignas(64) float oNear[3][P], oFar[3][P], rdLo[3][P], rdHi[3][P], margin[3][P];
     alignas(64) float tnear[P], tfar[P];  ///< tfar: the farthest culling distance of the sub-packet's rays
     bool neg[3];
 
@@ -168,12 +169,14 @@ struct SubPacketIntervals {
                     const PacketRay<K>& p = packets[s];
                     return a == 0 ? p.slab.rdx : a == 1 ? p.slab.rdy : p.slab.rdz;
                 };
+                float* oLo = neg[a] ? oNear[a] : oFar[a];
+                float* oHi = neg[a] ? oFar[a] : oNear[a];
                 if (whole.oLo[a] == whole.oHi[a]) {  // one origin for all rays (a pinhole camera's)
-                    V(whole.oLo[a]).store(oLo[a] + g);
-                    V(whole.oLo[a]).store(oHi[a] + g);
+                    V(whole.oLo[a]).store(oLo + g);
+                    V(whole.oLo[a]).store(oHi + g);
                 } else {
-                    reduce.template operator()<false>(o, validLanes, oLo[a]);
-                    reduce.template operator()<true>(o, validLanes, oHi[a]);
+                    reduce.template operator()<false>(o, validLanes, oLo);
+                    reduce.template operator()<true>(o, validLanes, oHi);
                 }
                 reduce.template operator()<false>(rd, validLanes, rdLo[a]);
                 reduce.template operator()<true>(rd, validLanes, rdHi[a]);
@@ -186,7 +189,7 @@ struct SubPacketIntervals {
                 clampReciprocals(lo, hi);
                 lo.store(rdLo[a] + g);
                 hi.store(rdHi[a] + g);
-                intervalMargin(V::load(oLo[a] + g), V::load(oHi[a] + g), lo, hi).store(margin[a] + g);
+                intervalMargin(V::load(oNear[a] + g), V::load(oFar[a] + g), lo, hi).store(margin[a] + g);
             }
         }
         for (int s = 0; s < P; ++s)
@@ -194,7 +197,7 @@ struct SubPacketIntervals {
     }
 
     void retire(int s) {
-        for (int a = 0; a < 3; ++a) oLo[a][s] = oHi[a][s] = rdLo[a][s] = rdHi[a][s] = margin[a][s] = 0.0f;
+        for (int a = 0; a < 3; ++a) oNear[a][s] = oFar[a][s] = rdLo[a][s] = rdHi[a][s] = margin[a][s] = 0.0f;
         tnear[s] = __builtin_huge_valf();
         tfar[s] = -__builtin_huge_valf();
     }
@@ -205,9 +208,9 @@ struct SubPacketIntervals {
         for (int c = 0; c < P; c += W) {
             F entry = F::load(tnear + c), exit = F::load(tfar + c);
             for (int a = 0; a < 3; ++a)
-                intervalSlab(F(neg[a] ? upper[a] : lower[a]), F(neg[a] ? lower[a] : upper[a]),
-                             F::load((neg[a] ? oLo[a] : oHi[a]) + c), F::load((neg[a] ? oHi[a] : oLo[a]) + c),
-                             F::load(rdLo[a] + c), F::load(rdHi[a] + c), F::load(margin[a] + c), entry, exit);
+                intervalSlab(F(neg[a] ? upper[a] : lower[a]), F(neg[a] ? lower[a] : upper[a]), F::load(oNear[a] + c),
+                             F::load(oFar[a] + c), F::load(rdLo[a] + c), F::load(rdHi[a] + c),
+                             F::load(margin[a] + c), entry, exit);
             mask |= uint64_t(movemask(intervalEnters(entry, exit))) << c;
         }
         return mask;
