@@ -30,14 +30,21 @@ struct SlabRay {
     F downX, downY, downZ;  ///< rounded down: subtracted at exit planes
 };
 
+/// x moved up (roundedUp) or down (roundedDown) by at least an ulp and at most two: |x| * 2^-23 is at
+/// least an ulp of x, and exact. Infinities the other way give NaN.
+template <class F>
+[[gnu::always_inline]] inline F roundedUp(const F& x) {
+    return x + simd::abs(x) * F(0x1p-23f);
+}
+template <class F>
+[[gnu::always_inline]] inline F roundedDown(const F& x) {
+    return x - simd::abs(x) * F(0x1p-23f);
+}
+
 template <class F>
 inline SlabRay<F> makeSlabRay(F ox, F oy, F oz, F rdx, F rdy, F rdz) {
-    using simd::abs;
-    // |x| * 2^-23 is at least an ulp of x (and exact), so x +- it rounds to at least one ulp away.
-    const F ulpScale(0x1p-23f);
-    F x = ox * rdx, y = oy * rdy, z = oz * rdz;
-    F ex = abs(x) * ulpScale, ey = abs(y) * ulpScale, ez = abs(z) * ulpScale;
-    return {rdx, rdy, rdz, x + ex, y + ey, z + ez, x - ex, y - ey, z - ez};
+    const F x = ox * rdx, y = oy * rdy, z = oz * rdz;
+    return {rdx, rdy, rdz, roundedUp(x), roundedUp(y), roundedUp(z), roundedDown(x), roundedDown(y), roundedDown(z)};
 }
 
 /// One ray's box test: its slab constants, and which of each axis' planes (WideNode::planes index

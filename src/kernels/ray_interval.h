@@ -9,65 +9,6 @@
 namespace wideray {
 inline namespace WIDERAY_ISA {
 
-/// Bounds of the packet's rays, per axis: origins and reciprocal directions (all of one sign).
-struct RayInterval {
-    float oLo[3], oHi[3], rdLo[3], rdHi[3];
-    /// Per axis, a distance at least the rays' own slab tests widen by: they subtract o * rd rounded
-    /// outward by an ulp or two (SlabRay), an absolute |o * rd| * 2^-22 that a margin relative to
-    /// the distance would miss near origins far from zero.
-    float margin[3];
-    bool neg[3];
-    /// Per axis, the origin bound that gives the near plane's least distance (oHi for positive
-    /// directions, oLo for negative ones) and the far plane's largest (the other), picked once.
-    float oNear[3], oFar[3];
-    float tnear;
-};
-
-/// One axis of the interval test: narrows [entry, exit] to where rays with origins in [oLo, oHi] and
-/// reciprocal directions in [rLo, rHi], all negative or all positive, can be between the slab's near
-/// and far planes, widened by `margin`. (plane - o) * rd is monotonic in o, so its extremes are
-/// products with the near plane's farthest origin `oNear` and the far plane's nearest `oFar` (oHi
-/// and oLo for positive directions, the other way round for negative ones), and either end of
-/// [rLo, rHi]: the same roundings as the least and largest of all four endpoint products.
-template <class F>
-[[gnu::always_inline]] inline void intervalSlab(const F& nearPlane, const F& farPlane, const F& oNear, const F& oFar,
-                                                const F& rLo, const F& rHi, const F& margin, F& entry, F& exit) {
-    const F n = nearPlane - oNear;
-    const F f = farPlane - oFar;
-    entry = max(min(n * rLo, n * rHi) - margin, entry);
-    exit = min(max(f * rLo, f * rHi) + margin, exit);
-}
-
-/// Widens [entry, exit] by 2^-16 relative, far more than the rounding of the interval products, and
-/// returns where the interval enters the box.
-template <class F>
-[[gnu::always_inline]] inline auto intervalEnters(F& entry, F& exit) {
-    const F lowerScale(1.0f - 1.0f / 65536.0f), upperScale(kRobustFarScale);
-    entry = select(entry > F(0.0f), entry * lowerScale, entry * upperScale);
-    exit = select(exit > F(0.0f), exit * upperScale, exit * lowerScale);
-    return entry <= exit;
-}
-
-/// Interval test of all N children of a node. The bounds are widened by the interval's margin and
-/// then by 2^-16 relative, so that no child that one of the rays' own slab tests enters is lost.
-template <int N>
-[[gnu::always_inline]] inline uint32_t intersectChildrenInterval(const WideNode<N>& node, const RayInterval& r,
-                                                                 float tfarMax, float* tEntryOut) {
-    constexpr int W = kNodeSimdWidth<N>;
-    using F = vfloat<W>;
-    uint32_t mask = 0;
-    for (int c = 0; c < N; c += W) {
-        F entry(r.tnear), exit(tfarMax);
-        for (int a = 0; a < 3; ++a)
-            intervalSlab(F::load(node.planes(a, r.neg[a]) + c), F::load(node.planes(a, !r.neg[a]) + c), F(r.oNear[a]),
-                         F(r.oFar[a]), F(r.rdLo[a]), F(r.rdHi[a]), F(r.margin[a]), entry, exit);
-        const auto enters = intervalEnters(entry, exit);
-        entry.store(tEntryOut + c);
-        mask |= movemask(enters) << c;
-    }
-    return mask;
-}
-
 /// Reciprocal bounds with infinities (zero direction components) clamped, so that 0 * inf cannot
 /// appear in the interval products; F is float or a vector of bundles.
 template <class F>
@@ -76,10 +17,84 @@ inline void clampReciprocals(F& rdLo, F& rdHi) {
     rdHi = min(rdHi, F(3.0e38f));
 }
 
-/// The interval's margin along one axis (RayInterval::margin) from its bounds.
+/// One axis of a bundle's interval test in the slab test's form, t = plane * rd - org * rd, one FMA
+/// per plane: entries with the bundle's reciprocal of least magnitude and its origin farthest along
+/// the direction (the least (plane - o) * rd where the plane is ahead of the origins), exits with
+/// the reciprocal of greatest magnitude and the nearest origin (the largest). Where an entry plane is
+/// behind some origins, their rays' distance to it is negative and so is the bundle's, which their
+/// tnear >= 0 (see narrowEnough) bounds; an exit plane behind every origin culls all rays.
+/// The products with the origins are rounded outward and widened by a margin, 2^-20 max |o| max
+/// |rd|: at least four times what each ray's own test adds (o * rd rounded outward by two ulps or
+/// less, SlabRay), and covering this product's rounding and, in the baseline without FMA, the
+/// rounding of plane * rd where it cancels with o * rd. The roundings relative to t are left to
+/// intervalEnters' 2^-16. Origins whose products overflow give infinities that never cull, or NaN
+/// slabs, which drop out of the min/max as in the rays' own test.
 template <class F>
-inline F intervalMargin(const F& oLo, const F& oHi, const F& rdLo, const F& rdHi) {
-    return F(0x1p-21f) * max(abs(oLo), abs(oHi)) * max(abs(rdLo), abs(rdHi));
+struct IntervalAxis {
+    F nearRd, nearOrgRd;  ///< entry t = nearPlane * nearRd - nearOrgRd
+    F farRd, farOrgRd;    ///< exit t = farPlane * farRd - farOrgRd
+};
+
+/// The interval axis of rays with origins in [oLo, oHi] and reciprocals in [rdLo, rdHi], all negative
+/// (neg) or all positive.
+template <class F>
+[[gnu::always_inline]] inline IntervalAxis<F> makeIntervalAxis(bool neg, const F& oLo, const F& oHi, F rdLo, F rdHi) {
+    clampReciprocals(rdLo, rdHi);
+    const F margin = F(0x1p-20f) * max(abs(oLo), abs(oHi)) * max(abs(rdLo), abs(rdHi));
+    const F oNear = neg ? oLo : oHi, oFar = neg ? oHi : oLo;
+    const F nearRd = neg ? rdHi : rdLo, farRd = neg ? rdLo : rdHi;
+    return {nearRd, roundedUp(oNear * nearRd) + margin, farRd, roundedDown(oFar * farRd) - margin};
+}
+
+/// Bounds of the packet's rays, per axis: origins and reciprocal directions (all of one sign), and
+/// the interval test they make.
+struct RayInterval {
+    float oLo[3], oHi[3], rdLo[3], rdHi[3];
+    bool neg[3];
+    IntervalAxis<float> axis[3];
+    float tnear;
+};
+
+/// One axis of the interval test: narrows [entry, exit] to where the bundle's rays can be between the
+/// slab's near and far planes.
+template <class F>
+[[gnu::always_inline]] inline void intervalSlab(const F& nearPlane, const F& farPlane, const F& nearRd,
+                                                const F& nearOrgRd, const F& farRd, const F& farOrgRd, F& entry,
+                                                F& exit) {
+    entry = max(fmsub(nearPlane, nearRd, nearOrgRd), entry);
+    exit = min(fmsub(farPlane, farRd, farOrgRd), exit);
+}
+
+/// Widens [entry, exit] by 2^-16 relative, far more than the rounding of the interval products, and
+/// returns where the interval enters the box. The entry is at least the bundle's tnear, never
+/// negative; an exit below zero culls with the widening as without.
+template <class F>
+[[gnu::always_inline]] inline auto intervalEnters(F& entry, F& exit) {
+    entry = entry * F(1.0f - 1.0f / 65536.0f);
+    exit = exit * F(kRobustFarScale);
+    return entry <= exit;
+}
+
+/// Interval test of all N children of a node, widened (IntervalAxis, intervalEnters) so that no
+/// child that one of the rays' own slab tests enters is lost.
+template <int N>
+[[gnu::always_inline]] inline uint32_t intersectChildrenInterval(const WideNode<N>& node, const RayInterval& r,
+                                                                 float tfarMax, float* tEntryOut) {
+    constexpr int W = kNodeSimdWidth<N>;
+    using F = vfloat<W>;
+    uint32_t mask = 0;
+    for (int c = 0; c < N; c += W) {
+        F entry(r.tnear), exit(tfarMax);
+        for (int a = 0; a < 3; ++a) {
+            const IntervalAxis<float>& x = r.axis[a];
+            intervalSlab(F::load(node.planes(a, r.neg[a]) + c), F::load(node.planes(a, !r.neg[a]) + c), F(x.nearRd),
+                         F(x.nearOrgRd), F(x.farRd), F(x.farOrgRd), entry, exit);
+        }
+        const auto enters = intervalEnters(entry, exit);
+        entry.store(tEntryOut + c);
+        mask |= movemask(enters) << c;
+    }
+    return mask;
 }
 
 /// Accumulates the bounds of the valid lanes of K-wide packets into a RayInterval.
@@ -116,12 +131,8 @@ struct RayBounds {
         iv.neg[0] = sameOctant.negXs; iv.neg[1] = sameOctant.negYs; iv.neg[2] = sameOctant.negZs;
         for (int a = 0; a < 3; ++a) {
             iv.oLo[a] = reduceMin(oLo[a]); iv.oHi[a] = reduceMax(oHi[a]);
-            // Infinite reciprocals (zero direction components) clamped, so that 0 * inf cannot appear.
             iv.rdLo[a] = reduceMin(rLo[a]); iv.rdHi[a] = reduceMax(rHi[a]);
-            clampReciprocals(iv.rdLo[a], iv.rdHi[a]);
-            iv.margin[a] = intervalMargin(iv.oLo[a], iv.oHi[a], iv.rdLo[a], iv.rdHi[a]);
-            iv.oNear[a] = iv.neg[a] ? iv.oLo[a] : iv.oHi[a];
-            iv.oFar[a] = iv.neg[a] ? iv.oHi[a] : iv.oLo[a];
+            iv.axis[a] = makeIntervalAxis(iv.neg[a], iv.oLo[a], iv.oHi[a], iv.rdLo[a], iv.rdHi[a]);
         }
         iv.tnear = reduceMin(tn);
         return iv;
@@ -136,8 +147,8 @@ template <int P>
 struct SubPacketIntervals {
     static constexpr int W = P < kMaxWidth ? P : kMaxWidth;
     using F = vfloat<W>;
-    /// Origin bounds as RayInterval::oNear and oFar, reciprocal direction bounds, margins.
-    alignas(64) float oNear[3][P], oFar[3][P], rdLo[3][P], rdHi[3][P], margin[3][P];
+    /// The interval axes (IntervalAxis), one lane per sub-packet.
+    alignas(64) float nearRd[3][P], nearOrgRd[3][P], farRd[3][P], farOrgRd[3][P];
     alignas(64) float tnear[P], tfar[P];  ///< tfar: the farthest culling distance of the sub-packet's rays
     bool neg[3];
 
@@ -153,11 +164,11 @@ struct SubPacketIntervals {
         for (int a = 0; a < 3; ++a) neg[a] = whole.neg[a];
         for (int g = 0; g < P; g += K) {
             // The least (or with Largest, the largest) of a value over each sub-packet's lanes in `lanes`.
-            auto reduce = [&]<bool Largest>(auto value, auto lanes, float* out) {
+            auto reduce = [&]<bool Largest>(auto value, auto lanes) {
                 V q[K];
                 for (int s = 0; s < K; ++s) q[s] = select(lanes(g + s), Largest ? -value(g + s) : value(g + s), inf);
                 const V r = transposeMin(q);
-                (Largest ? -r : r).store(out + g);
+                return Largest ? -r : r;
             };
             auto validLanes = [&](int s) { return valid[s]; };
             for (int a = 0; a < 3; ++a) {
@@ -169,35 +180,27 @@ struct SubPacketIntervals {
                     const PacketRay<K>& p = packets[s];
                     return a == 0 ? p.slab.rdx : a == 1 ? p.slab.rdy : p.slab.rdz;
                 };
-                float* oLo = neg[a] ? oNear[a] : oFar[a];
-                float* oHi = neg[a] ? oFar[a] : oNear[a];
-                if (whole.oLo[a] == whole.oHi[a]) {  // one origin for all rays (a pinhole camera's)
-                    V(whole.oLo[a]).store(oLo + g);
-                    V(whole.oLo[a]).store(oHi + g);
-                } else {
-                    reduce.template operator()<false>(o, validLanes, oLo);
-                    reduce.template operator()<true>(o, validLanes, oHi);
-                }
-                reduce.template operator()<false>(rd, validLanes, rdLo[a]);
-                reduce.template operator()<true>(rd, validLanes, rdHi[a]);
+                const bool oneOrigin = whole.oLo[a] == whole.oHi[a];  // a pinhole camera's
+                const V oLo = oneOrigin ? V(whole.oLo[a]) : reduce.template operator()<false>(o, validLanes);
+                const V oHi = oneOrigin ? V(whole.oLo[a]) : reduce.template operator()<true>(o, validLanes);
+                const IntervalAxis<V> x = makeIntervalAxis(neg[a], oLo, oHi, reduce.template operator()<false>(rd, validLanes),
+                                                           reduce.template operator()<true>(rd, validLanes));
+                x.nearRd.store(nearRd[a] + g);
+                x.nearOrgRd.store(nearOrgRd[a] + g);
+                x.farRd.store(farRd[a] + g);
+                x.farOrgRd.store(farOrgRd[a] + g);
             }
-            reduce.template operator()<false>([&](int s) { return packets[s].tnear; }, validLanes, tnear);
+            reduce.template operator()<false>([&](int s) { return packets[s].tnear; }, validLanes).store(tnear + g);
             reduce.template operator()<true>([&](int s) { return hits[s].t; },
-                                             [&](int s) { return andNot(valid[s], done[s]); }, tfar);
-            for (int a = 0; a < 3; ++a) {
-                V lo = V::load(rdLo[a] + g), hi = V::load(rdHi[a] + g);
-                clampReciprocals(lo, hi);
-                lo.store(rdLo[a] + g);
-                hi.store(rdHi[a] + g);
-                intervalMargin(V::load(oNear[a] + g), V::load(oFar[a] + g), lo, hi).store(margin[a] + g);
-            }
+                                             [&](int s) { return andNot(valid[s], done[s]); })
+                .store(tfar + g);
         }
         for (int s = 0; s < P; ++s)
             if (!(live >> s & 1)) retire(s);
     }
 
     void retire(int s) {
-        for (int a = 0; a < 3; ++a) oNear[a][s] = oFar[a][s] = rdLo[a][s] = rdHi[a][s] = margin[a][s] = 0.0f;
+        for (int a = 0; a < 3; ++a) nearRd[a][s] = nearOrgRd[a][s] = farRd[a][s] = farOrgRd[a][s] = 0.0f;
         tnear[s] = __builtin_huge_valf();
         tfar[s] = -__builtin_huge_valf();
     }
@@ -208,9 +211,8 @@ struct SubPacketIntervals {
         for (int c = 0; c < P; c += W) {
             F entry = F::load(tnear + c), exit = F::load(tfar + c);
             for (int a = 0; a < 3; ++a)
-                intervalSlab(F(neg[a] ? upper[a] : lower[a]), F(neg[a] ? lower[a] : upper[a]), F::load(oNear[a] + c),
-                             F::load(oFar[a] + c), F::load(rdLo[a] + c), F::load(rdHi[a] + c),
-                             F::load(margin[a] + c), entry, exit);
+                intervalSlab(F(neg[a] ? upper[a] : lower[a]), F(neg[a] ? lower[a] : upper[a]), F::load(nearRd[a] + c),
+                             F::load(nearOrgRd[a] + c), F::load(farRd[a] + c), F::load(farOrgRd[a] + c), entry, exit);
             mask |= uint64_t(movemask(intervalEnters(entry, exit))) << c;
         }
         return mask;
@@ -221,8 +223,10 @@ struct SubPacketIntervals {
 };
 
 /// Interval bounds are only tight for nearly parallel rays (a camera tile, shadow rays from
-/// neighbouring pixels): past about 6 degrees of spread, K-wide packets are faster.
+/// neighbouring pixels): past about 6 degrees of spread, K-wide packets are faster. Rays that start
+/// behind their origin (tnear < 0) are left to their own tests (see IntervalAxis).
 inline bool narrowEnough(const RayInterval& iv) {
+    if (!(iv.tnear >= 0.0f)) return false;
     float spread = 0.0f, extent = 0.0f;
     for (int a = 0; a < 3; ++a) {
         float dLo = 1.0f / iv.rdHi[a], dHi = 1.0f / iv.rdLo[a];
