@@ -11,25 +11,34 @@ namespace {
 
 /// One ray at a time: NodeW children and TriW triangles per box and triangle test. NodeW = TriW = 1
 /// is the reference (plain scalar loops, each ray's constants made on their own); the SIMD kernels
-/// make their rays' constants kMaxWidth at a time (forEachRayState).
-template <int N, int NodeW, int TriW, bool AnyHit, class Visit>
-void forEachSingleRay(const SceneView<N>& scene, const Ray* rays, size_t count, TraversalCost* costs, const Visit& visit) {
+/// make their rays' constants kMaxWidth at a time (forEachRayState). With Counting, each ray's work
+/// goes to costs[i].
+template <int N, int NodeW, int TriW, bool AnyHit, bool Counting, class Visit>
+void forEachSingleRayCounted(const SceneView<N>& scene, const Ray* rays, size_t count, TraversalCost* costs,
+                             const Visit& visit) {
+    using Leaves = SceneLeafIntersector<N>;
     auto trace = [&](size_t i, const SingleRayState* s) {
         TraversalCost cost;
         Hit hit;
         hit.t = rays[i].tfar;
         bool occluded = false;
-        if constexpr (NodeW == 1) occluded = traceSingle<N, NodeW, TriW, AnyHit>(scene, rays[i], hit, cost);
+        if constexpr (NodeW == 1) occluded = traceSingle<N, NodeW, TriW, AnyHit, Leaves, Counting>(scene, rays[i], hit, cost);
         else if (s)
-            occluded = traceSubtree<N, NodeW, TriW, AnyHit>(scene, scene.root, rays[i], s->box, [&] { return s->woop; },
-                                                            hit, cost);
+            occluded = traceSubtree<N, NodeW, TriW, AnyHit, Leaves, Counting>(
+                scene, scene.root, rays[i], s->box, [&] { return s->woop; }, hit, cost);
         visit(i, hit, occluded);
-        if (costs) costs[i] = cost;
+        if constexpr (Counting) costs[i] = cost;
     };
     if constexpr (NodeW == 1)
         for (size_t i = 0; i < count; ++i) trace(i, nullptr);
     else
         forEachRayState<kMaxWidth>(rays, count, trace);
+}
+
+template <int N, int NodeW, int TriW, bool AnyHit, class Visit>
+void forEachSingleRay(const SceneView<N>& scene, const Ray* rays, size_t count, TraversalCost* costs, const Visit& visit) {
+    if (costs) forEachSingleRayCounted<N, NodeW, TriW, AnyHit, true>(scene, rays, count, costs, visit);
+    else forEachSingleRayCounted<N, NodeW, TriW, AnyHit, false>(scene, rays, count, costs, visit);
 }
 
 template <int N, int NodeW, int TriW>
@@ -70,8 +79,8 @@ void singleOccludedCached(const SceneView<N>& scene, const Ray* rays, uint8_t* o
             occluded[i] = 1;
             return;
         }
-        TraversalCost cost;
-        occluded[i] = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, true>(
+        TraversalCost cost;  // not reported
+        occluded[i] = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, true, SceneLeafIntersector<N>, false>(
             scene, scene.root, ray, s.box, [&] { return s.woop; }, hit, cost, &cache.found);
         cache.remember();
     });

@@ -224,6 +224,7 @@ struct PacketUserHits {
 /// costs nothing.
 template <int K, bool Counting>
 struct PacketCost {
+    static constexpr bool counting = Counting;
     uint32_t nodes[Counting ? K : 1], leaves[Counting ? K : 1], primitives[Counting ? K : 1];
 
     PacketCost() {

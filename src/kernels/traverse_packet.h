@@ -188,7 +188,7 @@ template <int N, int K, bool AnyHit, class Leaves, class Cost>
             Hit hit = laneHit(lanes, user, lane);
             TraversalCost laneCost;
             const SingleRayState s = laneState(p, lane);
-            const bool occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves>(
+            const bool occluded = traceSubtree<N, kNodeSimdWidth<N>, kBlockSize, AnyHit, Leaves, Cost::counting>(
                 scene, ref, rays[lane], s.box, [&] { return s.woop; }, hit, laneCost, lastOccluder);
             cost.add(lane, laneCost);
             if (occluded) {

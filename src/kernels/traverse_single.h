@@ -66,8 +66,9 @@ template <int N, bool Ordered, class PushedFn>
 /// `tfar()` is the current culling distance, which without Ordered must not change but where `leaf`
 /// stops: a pushed subtree is then never culled when popped, and entry distances are not computed.
 /// Callers mark `leaf` always_inline: as a call it costs a vzeroupper and the node test's set-up again
-/// after every leaf.
-template <int N, int NodeW, bool Ordered, class LeafFn, class TfarFn>
+/// after every leaf. Inner nodes are counted in `cost` with CountNodes only: the counter, kept across
+/// the node loop, costs single rays 2-5% where nobody reads it.
+template <int N, int NodeW, bool Ordered, bool CountNodes, class LeafFn, class TfarFn>
 inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, const TfarFn& tfar,
                          const LeafFn& leaf, TraversalCost& cost) {
     const ChildBoxTest<N, NodeW> intersectChildren(box);
@@ -82,7 +83,7 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
         if (Ordered && e.distance > tfar() * kRobustFarScale) continue;
         NodeRef ref = e.ref;
         while (!ref.isLeaf()) {
-            ++counted.nodes;
+            if constexpr (CountNodes) ++counted.nodes;
             const WideNode<N>& node = nodes[ref.index()];
             alignas(64) float tEntry[N];
             uint32_t hits;
@@ -105,8 +106,9 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
 /// diffuse rays, nearly all misses, 1.4x faster with them made there). Any-hit rays start on surfaces
 /// and nearly all enter a leaf, where waiting for the divisions cost the bunny's shadow rays 3-4%:
 /// they make them before the traversal. Any-hit writes the block that occludes the ray to
-/// `lastOccluder`, where given.
-template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector<N>, class WoopFn>
+/// `lastOccluder`, where given. Without CountNodes, `cost` gets no inner nodes (traverseWide).
+template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector<N>, bool CountNodes = true,
+          class WoopFn>
 inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray, const BoxRay& box, const WoopFn& woop,
                          Hit& hit, TraversalCost& cost, uint32_t* lastOccluder = nullptr) {
     const Leaves leaves{scene.leaves, lastOccluder};
@@ -117,7 +119,7 @@ inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray
         blockRayMade = true;
     };
     if constexpr (AnyHit) makeBlockRay();
-    traverseWide<N, NodeW, !AnyHit>(
+    traverseWide<N, NodeW, !AnyHit, CountNodes>(
         scene.nodes, root, box, ray.tnear, [&] { return hit.t; },
         [&](NodeRef leaf, TraversalCost& counted) __attribute__((always_inline)) {
             if (!AnyHit && !blockRayMade) makeBlockRay();
@@ -128,10 +130,10 @@ inline bool traceSubtree(const SceneView<N>& scene, NodeRef root, const Ray& ray
 }
 
 /// The same for the whole scene; invalid rays miss.
-template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector<N>>
+template <int N, int NodeW, int TriW, bool AnyHit, class Leaves = SceneLeafIntersector<N>, bool CountNodes = true>
 inline bool traceSingle(const SceneView<N>& scene, const Ray& ray, Hit& hit, TraversalCost& cost) {
     if (!isValidRay(ray)) return false;
-    return traceSubtree<N, NodeW, TriW, AnyHit, Leaves>(scene, scene.root, ray, makeBoxRay(ray),
+    return traceSubtree<N, NodeW, TriW, AnyHit, Leaves, CountNodes>(scene, scene.root, ray, makeBoxRay(ray),
                                                         [&] { return makeWatertightRay(ray); }, hit, cost);
 }
 
