@@ -67,7 +67,7 @@ template <int N, bool Ordered, class PushedFn>
 /// stops: a pushed subtree is then never culled when popped, and entry distances are not computed.
 /// Callers mark `leaf` always_inline: as a call it costs a vzeroupper and the node test's set-up again
 /// after every leaf. Inner nodes are counted in `cost` with CountNodes only: the counter, kept across
-/// the node loop, costs single rays 2-5% where nobody reads it.
+/// the node loop, cost AVX2 single rays up to 13% where nobody reads it.
 template <int N, int NodeW, bool Ordered, bool CountNodes, class LeafFn, class TfarFn>
 inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& box, float tnear, const TfarFn& tfar,
                          const LeafFn& leaf, TraversalCost& cost) {
