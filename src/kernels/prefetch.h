@@ -2,8 +2,9 @@
 // Software prefetch for traversals: a node or leaf that a packet will visit after testing the rest of
 // its current node's children is asked for while it does so. Its first load otherwise waits for
 // memory: from inside the kitchen, a packet's first read of a leaf block took 14% of its time. A
-// single ray goes on to its nearest child right after the test, which leaves a prefetch nothing to
-// hide: asking for its leaves (or for the next entry of its stack on a pop) measured slower.
+// single ray asks for the first two inner nodes its box test finds before it orders them
+// (prefetchFirstHits); asking for its leaves (or for the next entry of its stack on a pop) measured
+// slower.
 #include <xmmintrin.h>
 
 #include <cstddef>
@@ -24,6 +25,22 @@ inline namespace WIDERAY_ISA {
 template <int N>
 [[gnu::always_inline]] inline void prefetchNode(const WideNode<N>* nodes, NodeRef inner) {
     prefetchLines(&nodes[inner.index()], sizeof(WideNode<N>));
+}
+
+/// A single ray's closest-hit step: asks for the inner nodes among the first two children in `hits`
+/// (slot order) as soon as the box test has found them, before their entry distances are compared, as
+/// Embree's single-ray traversal does. The nearer one's loads then no longer wait for that comparison,
+/// and the farther one is on its way when the ray pops it. AVX2, from inside Sponza and the kitchen:
+/// diffuse and bounce rays 7-10% faster, camera rays 4%; any-hit rays, which take the first child
+/// without comparing, were 9% slower with it.
+template <int N>
+[[gnu::always_inline]] inline void prefetchFirstHits(const WideNode<N>* nodes, const WideNode<N>& node, uint32_t hits) {
+    const NodeRef first = node.child[__builtin_ctz(hits)];
+    if (!first.isLeaf()) prefetchNode(nodes, first);
+    const uint32_t rest = hits & (hits - 1);
+    if (rest == 0) return;
+    const NodeRef second = node.child[__builtin_ctz(rest)];
+    if (!second.isLeaf()) prefetchNode(nodes, second);
 }
 
 } // namespace WIDERAY_ISA

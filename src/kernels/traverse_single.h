@@ -9,6 +9,7 @@
 #include "kernels/child_order.h"
 #include "kernels/hit_order.h"
 #include "kernels/leaf_intersector.h"
+#include "kernels/prefetch.h"
 
 #include "simd/isa_namespace.h"
 
@@ -90,6 +91,7 @@ inline void traverseWide(const WideNode<N>* nodes, NodeRef root, const BoxRay& b
             if constexpr (Ordered) hits = intersectChildren(node, tnear, tfar(), tEntry);
             else hits = intersectChildren.hits(node, tnear, tfar());
             if (hits == 0) goto pop;
+            if constexpr (Ordered) prefetchFirstHits(nodes, node, hits);
             ref = descendIntoChildren<N, Ordered>(stack, sp, node, hits, tEntry, [](NodeRef) {});
         }
         if (leaf(ref, counted)) break;
