@@ -38,7 +38,8 @@ struct InterleavedRay {
 /// intersected; then the next node or leaf it reads is asked for. Returns false when the ray is done.
 /// The children it pushes are asked for too (before taking turns, when the stream's rays finished one
 /// by one, that alone made `stream` 3-5% faster on Sponza's diffuse and bounce rays from inside and
-/// 6-12% on the kitchen's; `single` does not, as camera rays got 2-4% slower with it).
+/// 6-12% on the kitchen's; `single` asks only for the first two inner nodes it hits, prefetchFirstHits:
+/// asking for all it pushes made its camera rays 2-4% slower).
 template <int N, bool AnyHit, class Leaves>
 [[gnu::always_inline]] inline bool interleavedTurn(const SceneView<N>& scene, const Leaves& leaves,
                                                    InterleavedRay<N>& r) {
